@@ -1,0 +1,34 @@
+#include "curvetet/core/report.hpp"
+
+#include "curvetet/core/error.hpp"
+#include "curvetet/core/log.hpp"
+
+#include <fstream>
+
+namespace curvetet {
+
+void Report::add_timing(const std::string& stage, double seconds) { data_["timings_s"][stage] = seconds; }
+
+void Report::write(const std::string& path) const {
+  std::ofstream out(path);
+  if (!out) throw Error(ExitCode::io, "cannot write report file '" + path + "'");
+  out << data_.dump(2) << '\n';
+  if (!out) throw Error(ExitCode::io, "failed while writing report file '" + path + "'");
+}
+
+StageTimer::StageTimer(Report* report, std::string stage)
+    : report_(report), stage_(std::move(stage)), start_(std::chrono::steady_clock::now()) {
+  logger().info("{} ...", stage_);
+}
+
+double StageTimer::elapsed() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+StageTimer::~StageTimer() {
+  double s = elapsed();
+  if (report_) report_->add_timing(stage_, s);
+  logger().info("{} done in {:.3f} s", stage_, s);
+}
+
+} // namespace curvetet

@@ -1,0 +1,45 @@
+#include "curvetet/geometry/predicates.hpp"
+
+#include <gtest/gtest.h>
+
+using curvetet::geometry::Point3;
+namespace g = curvetet::geometry;
+
+// Pins the orientation convention documented in predicates.hpp.
+TEST(Orient3d, RightHandedUnitTetIsPositive) {
+  Point3 o(0, 0, 0), x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+  EXPECT_EQ(g::orient3d(o, x, y, z), 1);
+  EXPECT_EQ(g::orient3d(o, y, x, z), -1);
+  EXPECT_EQ(g::orient3d(o, x, y, Point3(5, -3, 0)), 0);
+}
+
+TEST(Orient3d, ExactWhereDoublesRoundWrongly) {
+  // d is off the plane by one ulp-scale amount that a naive determinant in
+  // double arithmetic loses among large terms.
+  Point3 a(1e8, 1e8, 0), b(1e8 + 1, 1e8, 0), c(1e8, 1e8 + 1, 0);
+  Point3 d(0.5, 0.5, 1e-300);
+  EXPECT_EQ(g::orient3d(a, b, c, d), 1);
+  EXPECT_EQ(g::orient3d(a, b, c, Point3(0.5, 0.5, -1e-300)), -1);
+  EXPECT_EQ(g::orient3d(a, b, c, Point3(0.5, 0.5, 0.0)), 0);
+}
+
+TEST(Collinear, ExactOnCoincidentAndNearlyCollinearPoints) {
+  Point3 a(0, 0, 0), b(1, 1, 1);
+  EXPECT_TRUE(g::collinear(a, b, Point3(2, 2, 2)));
+  EXPECT_TRUE(g::collinear(a, a, b));
+  EXPECT_FALSE(g::collinear(a, b, Point3(2, 2, 2 + 4.440892098500626e-16)));
+}
+
+TEST(TriangleIntersection, TouchingAndSeparated) {
+  Point3 a0(0, 0, 0), a1(1, 0, 0), a2(0, 1, 0);
+  EXPECT_TRUE(g::triangles_intersect(a0, a1, a2, Point3(0.2, 0.2, -1), Point3(0.2, 0.2, 1), Point3(0.3, 0.4, 0)));
+  EXPECT_FALSE(g::triangles_intersect(a0, a1, a2, Point3(0, 0, 1e-300), Point3(1, 0, 1e-300), Point3(0, 1, 1e-300)));
+  // Vertex touching an edge counts as intersecting (closed triangles).
+  EXPECT_TRUE(g::triangles_intersect(a0, a1, a2, Point3(0.5, 0.5, 0), Point3(1, 1, 1), Point3(1, 1, -1)));
+}
+
+TEST(SegmentTriangle, Basic) {
+  Point3 t0(0, 0, 0), t1(1, 0, 0), t2(0, 1, 0);
+  EXPECT_TRUE(g::segment_triangle_intersect(Point3(0.1, 0.1, -1), Point3(0.1, 0.1, 1), t0, t1, t2));
+  EXPECT_FALSE(g::segment_triangle_intersect(Point3(0.6, 0.6, -1), Point3(0.6, 0.6, 1), t0, t1, t2));
+}
