@@ -43,3 +43,25 @@ TEST(SegmentTriangle, Basic) {
   EXPECT_TRUE(g::segment_triangle_intersect(Point3(0.1, 0.1, -1), Point3(0.1, 0.1, 1), t0, t1, t2));
   EXPECT_FALSE(g::segment_triangle_intersect(Point3(0.6, 0.6, -1), Point3(0.6, 0.6, 1), t0, t1, t2));
 }
+
+TEST(CoplanarSegmentTriangle, AgreesWithTheGeneral3dTest) {
+  // Points on a tilted plane z = x + 2y (exactly representable values), so
+  // every configuration is exactly coplanar.
+  auto on_plane = [](double x, double y) { return Point3(x, y, x + 2 * y); };
+  const Point3 t0 = on_plane(0, 0), t1 = on_plane(4, 0), t2 = on_plane(0, 4);
+  const double grid[] = {-1, 0, 0.5, 1, 2, 3, 4, 5};
+  int hits = 0, misses = 0;
+  for (double x0 : grid)
+    for (double y0 : grid)
+      for (double x1 : grid)
+        for (double y1 : grid) {
+          Point3 s0 = on_plane(x0, y0), s1 = on_plane(x1, y1);
+          if (s0 == s1) continue; // CGAL requires a proper segment
+          bool want = g::segment_triangle_intersect(s0, s1, t0, t1, t2);
+          ASSERT_EQ(g::coplanar_segment_triangle_intersect(s0, s1, t0, t1, t2), want)
+              << x0 << "," << y0 << " - " << x1 << "," << y1;
+          (want ? hits : misses)++;
+        }
+  EXPECT_GT(hits, 100);
+  EXPECT_GT(misses, 100);
+}

@@ -179,6 +179,24 @@ bool check_topology(const mesh::SurfaceMesh& m, PreconditionReport& r) {
   return nonmanifold_edges.empty() && nonmanifold_vertices.empty() && open_edges.empty() && misoriented.empty();
 }
 
+// When nesting is undefined (intersecting components), still tell the user
+// which components enclose a negative volume on their own: each is either a
+// cavity or an inverted solid. Information only (double arithmetic).
+void note_inward_components(const mesh::SurfaceMesh& m, PreconditionReport& r) {
+  auto topo = mesh::build_edge_topology(m.faces);
+  int count = 0;
+  auto comp = mesh::face_components(m.faces, topo, &count);
+  std::vector<double> volume(count, 0.0);
+  std::vector<int> first(count, -1);
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const auto& t = m.faces[f];
+    volume[comp[f]] += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
+    if (first[comp[f]] < 0) first[comp[f]] = f;
+  }
+  for (int c = 0; c < count; ++c)
+    if (volume[c] < 0) r.inward_components.push_back(first[c]);
+}
+
 } // namespace
 
 int PreconditionReport::exit_code() const {
@@ -201,6 +219,12 @@ std::string PreconditionReport::text() const {
   if (min_area_face >= 0)
     out += fmt::format("\n  info: smallest triangle area {:.3g} x bbox diagonal^2 (face {}); tiny triangles are valid",
                        min_relative_area, min_area_face);
+  if (!inward_components.empty())
+    out += fmt::format("\n  info: {} components face inward (cavities or inverted solids; first faces {}{})",
+                       inward_components.size(),
+                       fmt::join(inward_components.begin(),
+                                 inward_components.begin() + std::min<std::size_t>(inward_components.size(), 8), ", "),
+                       inward_components.size() > 8 ? ", ..." : "");
   if (isolated_vertices) out += fmt::format("\n  info: {} vertices belong to no face (ignored)", isolated_vertices);
   for (const auto& s : skipped) out += "\n  not checked: " + s;
   return out;
@@ -225,6 +249,7 @@ nlohmann::json PreconditionReport::json() const {
                             {"examples", d.examples},
                             {"message", d.message}});
   j["not_checked"] = skipped;
+  if (!inward_components.empty()) j["inward_components_first_faces"] = inward_components;
   j["timings_s"] = {{"topology", seconds_topology},
                     {"self_intersection", seconds_self_intersection},
                     {"orientation", seconds_orientation}};
@@ -258,6 +283,7 @@ PreconditionReport check_preconditions(const mesh::PolygonSoup& soup) {
 
   if (!faces_ok || !manifold || !pairs.empty()) {
     r.skipped.push_back("solid orientation (needs a closed manifold without degenerate or intersecting faces)");
+    if (manifold) note_inward_components(mesh, r);
     return r;
   }
   t0 = std::chrono::steady_clock::now();

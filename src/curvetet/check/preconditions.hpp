@@ -36,6 +36,9 @@ struct PreconditionReport {
   int min_area_face = -1;
   double seconds_topology = 0, seconds_self_intersection = 0, seconds_orientation = 0;
   std::vector<std::string> skipped;      // checks not run because an earlier stage failed
+  // Only when solid orientation could not be checked: first face of each
+  // component enclosing a negative volume on its own (information).
+  std::vector<int> inward_components;
 
   bool ok() const { return defects.empty(); }
   // Exit code of the first (most fundamental) defect, 0 if none.

@@ -5,6 +5,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+
 namespace curvetet::check {
 
 using geometry::Point3;
@@ -25,8 +27,19 @@ bool faces_intersect(const mesh::SurfaceMesh& m, int f, int g) {
   if (shared == 0) return geometry::triangles_intersect(P[a[0]], P[a[1]], P[a[2]], P[b[0]], P[b[1]], P[b[2]]);
   if (shared == 1) {
     const int i = ia[0], j = ib[0];
-    return geometry::segment_triangle_intersect(P[a[(i + 1) % 3]], P[a[(i + 2) % 3]], P[b[0]], P[b[1]], P[b[2]]) ||
-           geometry::segment_triangle_intersect(P[b[(j + 1) % 3]], P[b[(j + 2) % 3]], P[a[0]], P[a[1]], P[a[2]]);
+    const Point3 &v = P[a[i]], &a1 = P[a[(i + 1) % 3]], &a2 = P[a[(i + 2) % 3]];
+    const Point3 &b1 = P[b[(j + 1) % 3]], &b2 = P[b[(j + 2) % 3]];
+    // B strictly on one side of A's plane except at v (or vice versa): they
+    // meet only at v. Cheap, and decides most neighbouring pairs.
+    const int s1 = geometry::orient3d(v, a1, a2, b1), s2 = geometry::orient3d(v, a1, a2, b2);
+    if (s1 == s2 && s1 != 0) return false;
+    const int r1 = geometry::orient3d(v, b1, b2, a1), r2 = geometry::orient3d(v, b1, b2, a2);
+    if (r1 == r2 && r1 != 0) return false;
+    if (s1 == 0 && s2 == 0) // coplanar: decide in 2D
+      return geometry::coplanar_segment_triangle_intersect(a1, a2, v, b1, b2) ||
+             geometry::coplanar_segment_triangle_intersect(b1, b2, v, a1, a2);
+    return geometry::segment_triangle_intersect(a1, a2, v, b1, b2) ||
+           geometry::segment_triangle_intersect(b1, b2, v, a1, a2);
   }
   if (shared == 2) {
     const int u = a[ia[0]], v = a[ia[1]];
@@ -55,7 +68,8 @@ std::vector<std::pair<int, int>> self_intersections(const mesh::SurfaceMesh& m, 
   std::vector<std::pair<int, int>> out;
   for (std::size_t k = 0; k < candidates.size(); ++k)
     if (hit[k]) out.emplace_back(ids[candidates[k].first], ids[candidates[k].second]);
-  return out; // ids increasing, candidates sorted: out is sorted
+  std::sort(out.begin(), out.end()); // candidates come in no particular order
+  return out;
 }
 
 } // namespace curvetet::check

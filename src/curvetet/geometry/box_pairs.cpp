@@ -38,7 +38,6 @@ std::vector<std::pair<int, int>> overlapping_pairs(const std::vector<Box3>& boxe
     auto i = static_cast<int>(x.handle()), j = static_cast<int>(y.handle());
     pairs.emplace_back(std::min(i, j), std::max(i, j));
   });
-  sort_unique(pairs);
   return pairs;
 }
 

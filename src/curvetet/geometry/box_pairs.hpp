@@ -18,7 +18,7 @@ struct Box3 {
 Box3 bounding_box(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 // All pairs (i, j), i < j, of boxes in one set that overlap (closed boxes, so
-// touching counts). Sorted, no duplicates.
+// touching counts). Each pair once, in no particular order.
 std::vector<std::pair<int, int>> overlapping_pairs(const std::vector<Box3>& boxes);
 
 // All pairs (i in a, j in b) that overlap. Sorted, no duplicates.

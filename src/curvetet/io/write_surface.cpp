@@ -85,7 +85,9 @@ void write_stl(std::ostream& o, const mesh::SurfaceMesh& m, bool binary) {
       o << fmt::format("facet normal {:.9g} {:.9g} {:.9g}\nouter loop\n", n.x(), n.y(), n.z());
       for (int v : f) {
         const auto& p = m.vertices[v];
-        o << fmt::format("vertex {:.9g} {:.9g} {:.9g}\n", float(p.x()), float(p.y()), float(p.z()));
+        // The float's exact value, so that a reader parsing doubles gets it back.
+        o << fmt::format("vertex {:.17g} {:.17g} {:.17g}\n", double(float(p.x())), double(float(p.y())),
+                         double(float(p.z())));
       }
       o << "endloop\nendfacet\n";
     }
