@@ -7,6 +7,8 @@
 #include "curvetet/io/read_surface.hpp"
 #include "curvetet/mesh/edge_topology.hpp"
 
+#include <algorithm>
+
 namespace curvetet::app {
 
 void add_input_options(CLI::App& cmd, InputOptions& o) {
@@ -54,9 +56,17 @@ CheckedInput read_checked_input(const InputOptions& o, Report& report) {
       in.features.edges.insert(in.features.edges.end(), detected.begin(), detected.end());
       features::validate_and_normalize(in.features, in.mesh, topo);
     }
+    in.feature_graph = features::group_features(in.mesh.num_vertices(), in.features.edges, in.features.corners);
+    const auto loops = std::count_if(in.feature_graph.chains.begin(), in.feature_graph.chains.end(),
+                                     [](const features::FeatureChain& c) { return c.closed; });
     report["features"] = {{"edges", in.features.edges.size()},
-                          {"corners", in.features.corners.size()},
+                          {"user_corners", in.features.corners.size()},
+                          {"corners", in.feature_graph.corners.size()},
+                          {"chains", in.feature_graph.chains.size() - loops},
+                          {"loops", loops},
                           {"points", in.features.points.faces.size()}};
+    logger().info("features: {} edges in {} chains and {} loops, {} corners", in.features.edges.size(),
+                  in.feature_graph.chains.size() - loops, loops, in.feature_graph.corners.size());
   }
   return in;
 }

@@ -3,6 +3,7 @@
 // subcommands that take an input mesh, so all report defects the same way.
 #include "curvetet/check/preconditions.hpp"
 #include "curvetet/core/report.hpp"
+#include "curvetet/features/chains.hpp"
 #include "curvetet/features/feature_input.hpp"
 #include "curvetet/mesh/surface_mesh.hpp"
 
@@ -26,6 +27,7 @@ void add_input_options(CLI::App& cmd, InputOptions& options);
 struct CheckedInput {
   mesh::SurfaceMesh mesh;
   features::FeatureInput features;
+  features::FeatureGraph feature_graph; // empty without features
   check::PreconditionReport preconditions;
 };
 
