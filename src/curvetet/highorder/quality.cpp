@@ -1,0 +1,91 @@
+#include "curvetet/highorder/quality.hpp"
+
+#include "curvetet/highorder/element_map.hpp"
+#include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/highorder/quadrature.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace curvetet::highorder {
+
+namespace {
+
+const Eigen::Matrix3d& regular_tet_inverse() {
+  static const Eigen::Matrix3d inv = [] {
+    Eigen::Matrix3d w;
+    w.col(0) << 1, 0, 0;
+    w.col(1) << 0.5, std::sqrt(3.0) / 2, 0;
+    w.col(2) << 0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0);
+    return Eigen::Matrix3d(w.inverse());
+  }();
+  return inv;
+}
+
+} // namespace
+
+double scaled_jacobian(const Eigen::Matrix3d& j) {
+  const double det = j.determinant();
+  const Eigen::Vector3d a = j.col(0), b = j.col(1), c = j.col(2);
+  // Edge derivatives leaving each corner of the reference tet.
+  const Eigen::Vector3d frames[4][3] = {{a, b, c}, {-a, b - a, c - a}, {-b, a - b, c - b}, {-c, a - c, b - c}};
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& f : frames) {
+    const double len = f[0].norm() * f[1].norm() * f[2].norm();
+    const double s = len > 0 ? std::sqrt(2.0) * det / len : (det > 0 ? 1.0 : -1.0);
+    best = std::min(best, s);
+  }
+  return best;
+}
+
+double amips(const Eigen::Matrix3d& j) {
+  const Eigen::Matrix3d jr = j * regular_tet_inverse();
+  const double det = jr.determinant();
+  if (!(det > 0)) return std::numeric_limits<double>::infinity();
+  return jr.squaredNorm() / (3.0 * std::cbrt(det * det));
+}
+
+double triangle_mips(const Eigen::Matrix<double, 3, 2>& j) {
+  Eigen::Matrix2d w;
+  w << 1, 0.5, 0, std::sqrt(3.0) / 2;
+  const Eigen::Matrix<double, 3, 2> jr = j * w.inverse();
+  const Eigen::Matrix2d g = jr.transpose() * jr;
+  const double det = g.determinant();
+  if (!(det > 0)) return std::numeric_limits<double>::infinity();
+  return g.trace() / (2.0 * std::sqrt(det));
+}
+
+TetQuality tet_quality(int order, const Eigen::Vector3d* nodes) {
+  TetQuality q;
+  q.min_scaled_jacobian = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < tet_node_count(order); ++i) {
+    auto p = tet_node(order, i);
+    Eigen::Vector3d xi(p[0], p[1], p[2]);
+    xi /= order;
+    q.min_scaled_jacobian = std::min(q.min_scaled_jacobian, scaled_jacobian(tet_jacobian(order, nodes, xi)));
+  }
+  const Quadrature rule = tet_quadrature(order + 1);
+  double sum = 0, wsum = 0;
+  for (std::size_t k = 0; k < rule.points.size(); ++k) {
+    const Eigen::Matrix3d j = tet_jacobian(order, nodes, rule.points[k]);
+    q.min_scaled_jacobian = std::min(q.min_scaled_jacobian, scaled_jacobian(j));
+    const double e = amips(j);
+    q.max_amips = std::max(q.max_amips, e);
+    sum += rule.weights[k] * e;
+    wsum += rule.weights[k];
+  }
+  q.mean_amips = sum / wsum;
+  return q;
+}
+
+double triangle_max_mips(int order, const Eigen::Vector3d* nodes) {
+  const Quadrature rule = triangle_quadrature(order + 1);
+  double m = 0;
+  for (const auto& p : rule.points) m = std::max(m, triangle_mips(triangle_jacobian(order, nodes, p.head<2>())));
+  return m;
+}
+
+} // namespace curvetet::highorder

@@ -1,0 +1,11 @@
+#include "curvetet/mesh/tet_mesh.hpp"
+
+namespace curvetet::mesh {
+
+void set_default_groups(TetMesh& m) {
+  m.groups = {{2, kBoundaryTag, "boundary"}, {3, kDomainTag, "domain"}};
+  m.tet_tags.assign(m.num_tets(), kDomainTag);
+  m.boundary_tags.assign(m.num_boundary(), kBoundaryTag);
+}
+
+} // namespace curvetet::mesh

@@ -1,0 +1,50 @@
+#pragma once
+// A curved (high-order) tetrahedral mesh as plain data, the output of the
+// pipeline and the input of `curvetet check`.
+//
+// All elements share one order P (1..8). Node ids are 0-based into `nodes`.
+// Tet t has nodes tets[t * tet_nodes() + i], i in curvetet's internal
+// element order, which is Gmsh's (highorder/node_ordering.hpp: corners, then
+// edges 0-1, 1-2, 2-0, 3-0, 3-2, 3-1, faces, interior). Positive tets have
+// orient3d(corner0..3) > 0 (geometry/predicates.hpp) and det J > 0.
+// Boundary triangle b has nodes boundary[b * triangle_nodes() + i] in the
+// internal triangle order (corners, edges 0-1, 1-2, 2-0, interior),
+// counter-clockwise seen from outside the domain.
+// Tags are physical group tags (0 = none); `groups` names them.
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace curvetet::mesh {
+
+struct PhysicalGroup {
+  int dim = 0; // 2 or 3
+  int tag = 0;
+  std::string name;
+};
+
+struct TetMesh {
+  int order = 1;
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<int> tets;     // num_tets() x tet_nodes()
+  std::vector<int> boundary; // num_boundary() x triangle_nodes()
+  std::vector<int> tet_tags;      // one per tet (may be empty = all 0)
+  std::vector<int> boundary_tags; // one per boundary triangle (may be empty)
+  std::vector<PhysicalGroup> groups;
+
+  int tet_nodes() const { return (order + 1) * (order + 2) * (order + 3) / 6; }
+  int triangle_nodes() const { return (order + 1) * (order + 2) / 2; }
+  int num_tets() const { return static_cast<int>(tets.size()) / tet_nodes(); }
+  int num_boundary() const { return static_cast<int>(boundary.size()) / triangle_nodes(); }
+  const int* tet(int t) const { return tets.data() + static_cast<std::size_t>(t) * tet_nodes(); }
+  const int* boundary_triangle(int b) const { return boundary.data() + static_cast<std::size_t>(b) * triangle_nodes(); }
+};
+
+// Default physical groups written by curvetet: boundary triangles in
+// "boundary" (dim 2, tag 1), tets in "domain" (dim 3, tag 2).
+constexpr int kBoundaryTag = 1;
+constexpr int kDomainTag = 2;
+void set_default_groups(TetMesh& mesh);
+
+} // namespace curvetet::mesh
