@@ -106,6 +106,7 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
       throw Error(ExitCode::internal, fmt::format("shell: prism {} fails with all its pillars pinched", bad.front()));
   }
   stats.seconds_initial = std::chrono::duration<double>(clock::now() - t0).count();
+  if (spec.after_stage) spec.after_stage(s, "initial layer");
 
   // 2. Thickening rounds.
   t0 = clock::now();
@@ -155,6 +156,7 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
     logger().debug("shell: thickening round {}: {} of {} vertices grew", round + 1, grown, changed.size());
   }
   stats.seconds_rounds = std::chrono::duration<double>(clock::now() - t0).count();
+  if (spec.after_stage) spec.after_stage(s, "thickening");
   return stats;
 }
 

@@ -16,6 +16,8 @@
 // against all caps). Deterministic for any thread count.
 #include "curvetet/shell/shell.hpp"
 
+#include <functional>
+#include <string_view>
 #include <vector>
 
 namespace curvetet::shell {
@@ -25,6 +27,9 @@ struct LayerGrowthSpec {
   bool grow_bottom = true, grow_top = true;
   double initial = 0, target = 0; // absolute lengths
   int max_rounds = 30;
+  // Called after the initial layer and after the rounds (e.g. the global
+  // --debug-invariants check); may throw.
+  std::function<void(const Shell&, std::string_view stage)> after_stage;
 };
 
 struct LayerGrowthStats {
