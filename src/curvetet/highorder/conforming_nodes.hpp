@@ -22,6 +22,10 @@ struct ConformingNodes {
 
 ConformingNodes number_tet_nodes(int num_vertices, const std::vector<std::array<int, 4>>& tets, int order);
 
+// The same for order-P triangles (e.g. a curved surface patch); `tet_nodes`
+// then holds triangle_node_count(order) ids per triangle.
+ConformingNodes number_triangle_nodes(int num_vertices, const std::vector<std::array<int, 3>>& triangles, int order);
+
 // The barycentric weights (summing to 1) of internal node i of an order-P tet
 // on its four corners: what a caller maps through its element map to place
 // the node.
