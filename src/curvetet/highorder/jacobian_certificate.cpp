@@ -34,9 +34,15 @@ double gamma(int k) { return k * kUnit / (1 - k * kUnit); }
 // Bernstein polynomial on (simplex of dimension sd, degree n) x ([0,1], degree q).
 struct Shape {
   int sd = 3, n = 0, q = 0;
-  int simplex_size() const { return lattice_size(sd, n); }
-  int size() const { return simplex_size() * (q + 1); }
+  int simplex_count = 0, count = 0; // cached sizes (see make_shape)
+  int simplex_size() const { return simplex_count; }
+  int size() const { return count; }
 };
+
+Shape make_shape(int sd, int n, int q) {
+  const int s = lattice_size(sd, n);
+  return Shape{sd, n, q, s, s * (q + 1)};
+}
 
 double binomial(int q, int j) {
   double b = 1;
@@ -44,10 +50,21 @@ double binomial(int q, int j) {
   return b;
 }
 
-// Scaled-coefficient weight n!/alpha! * C(q, j) of flat index i (an exact integer).
-double weight(const Shape& s, int i) {
-  return lattice(s.sd, s.n).multinomial(i / (s.q + 1)) * binomial(s.q, i % (s.q + 1));
+// Scaled-coefficient weights n!/alpha! * C(q, j) of every flat index (exact
+// integers), built once per shape.
+const std::vector<double>& weights(const Shape& s) {
+  constexpr int kMaxN = 24, kMaxQ = 2;
+  static std::vector<double> cache[4][kMaxN + 1][kMaxQ + 1];
+  static std::once_flag once[4][kMaxN + 1][kMaxQ + 1];
+  std::call_once(once[s.sd][s.n][s.q], [&s] {
+    const auto& lat = lattice(s.sd, s.n);
+    auto& w = cache[s.sd][s.n][s.q];
+    for (int i = 0; i < lat.size() * (s.q + 1); ++i)
+      w.push_back(lat.multinomial(i / (s.q + 1)) * binomial(s.q, i % (s.q + 1)));
+  });
+  return cache[s.sd][s.n][s.q];
 }
+double weight(const Shape& s, int i) { return weights(s)[i]; }
 
 // For products in scaled form: out[index(a_i + b_j)] += a_i * b_j.
 struct ConvTable {
@@ -57,7 +74,7 @@ struct ConvTable {
 };
 
 ConvTable make_conv(Shape a, Shape b) {
-  ConvTable t{a, b, {a.sd, a.n + b.n, a.q + b.q}, {}, 0};
+  ConvTable t{a, b, make_shape(a.sd, a.n + b.n, a.q + b.q), {}, 0};
   const auto& la = lattice(a.sd, a.n);
   const auto& lb = lattice(b.sd, b.n);
   const auto& lo = lattice(a.sd, a.n + b.n);
@@ -86,7 +103,7 @@ const Plan& tet_plan(int order) {
   static std::unique_ptr<Plan> cache[kMaxOrder + 1];
   static std::once_flag once[kMaxOrder + 1];
   std::call_once(once[order], [order] {
-    Shape c{3, order - 1, 0};
+    Shape c = make_shape(3, order - 1, 0);
     auto cross = make_conv(c, c);
     auto dot = make_conv(c, cross.out);
     cache[order] = std::make_unique<Plan>(Plan{c, c, c, std::move(cross), std::move(dot)});
@@ -98,7 +115,7 @@ const Plan& slab_plan(int k) {
   static std::unique_ptr<Plan> cache[kMaxOrder + 1];
   static std::once_flag once[kMaxOrder + 1];
   std::call_once(once[k], [k] {
-    Shape uv{2, k - 1, 1}, t{2, k, 0};
+    Shape uv = make_shape(2, k - 1, 1), t = make_shape(2, k, 0);
     auto cross = make_conv(uv, t);
     auto dot = make_conv(uv, cross.out);
     cache[k] = std::make_unique<Plan>(Plan{uv, uv, t, std::move(cross), std::move(dot)});
@@ -116,27 +133,37 @@ T to_number(double x) {
   return T(x);
 }
 
-template <class T>
-const T& basis_entry(int dim, int order, int i, int j);
-template <>
-const double& basis_entry<double>(int dim, int order, int i, int j) {
-  return basis_change(dim, order).lagrange_to_bernstein.coeffRef(i, j);
-}
-template <>
-const mpq_class& basis_entry<mpq_class>(int dim, int order, int i, int j) {
-  const auto& e = detail::exact_basis_change(dim, order);
-  return e.to_bernstein[static_cast<std::size_t>(i) * e.n + j];
-}
-
 // Bernstein control points (canonical order) of nodes p (already shifted).
 template <class T>
-std::vector<V3<T>> control_points(int dim, int order, const std::vector<V3<T>>& p) {
+std::vector<V3<T>> control_points(int dim, int order, const std::vector<V3<T>>& p);
+
+template <>
+std::vector<V3<double>> control_points<double>(int dim, int order, const std::vector<V3<double>>& p) {
+  const Eigen::MatrixXd& a = basis_change(dim, order).lagrange_to_bernstein;
   const int n = static_cast<int>(p.size());
-  std::vector<V3<T>> b(n, V3<T>{T(0), T(0), T(0)});
+  std::vector<V3<double>> b(n, V3<double>{0, 0, 0});
+  for (int i = 0; i < n; ++i) {
+    double x = 0, y = 0, z = 0;
+    for (int j = 0; j < n; ++j) {
+      const double w = a(i, j);
+      x += w * p[j][0];
+      y += w * p[j][1];
+      z += w * p[j][2];
+    }
+    b[i] = {x, y, z};
+  }
+  return b;
+}
+
+template <>
+std::vector<V3<mpq_class>> control_points<mpq_class>(int dim, int order, const std::vector<V3<mpq_class>>& p) {
+  const auto& e = detail::exact_basis_change(dim, order);
+  const int n = static_cast<int>(p.size());
+  std::vector<V3<mpq_class>> b(n, V3<mpq_class>{0, 0, 0});
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
-      const T& a = basis_entry<T>(dim, order, i, j);
-      if (a == 0) continue;
+      const mpq_class& a = e.to_bernstein[static_cast<std::size_t>(i) * n + j];
+      if (sgn(a) == 0) continue;
       for (int c = 0; c < 3; ++c) b[i][c] += a * p[j][c];
     }
   return b;
@@ -189,8 +216,9 @@ std::vector<V3<T>> t_derivative(const std::vector<V3<T>>& c) {
 
 template <class T>
 void scale(const Shape& s, std::vector<V3<T>>& c) {
+  const auto& ws = weights(s);
   for (int i = 0; i < s.size(); ++i) {
-    T w(weight(s, i));
+    T w(ws[i]);
     for (int d = 0; d < 3; ++d) c[i][d] *= w;
   }
 }
@@ -198,8 +226,8 @@ void scale(const Shape& s, std::vector<V3<T>>& c) {
 template <class T>
 std::vector<V3<T>> conv_cross(const ConvTable& t, const std::vector<V3<T>>& a, const std::vector<V3<T>>& b) {
   std::vector<V3<T>> h(t.out.size(), V3<T>{T(0), T(0), T(0)});
-  const int nb = t.b.size();
-  for (int i = 0; i < t.a.size(); ++i) {
+  const int na = t.a.size(), nb = t.b.size();
+  for (int i = 0; i < na; ++i) {
     const auto& x = a[i];
     const int* row = t.out_index.data() + static_cast<std::size_t>(i) * nb;
     for (int j = 0; j < nb; ++j) {
@@ -216,8 +244,8 @@ std::vector<V3<T>> conv_cross(const ConvTable& t, const std::vector<V3<T>>& a, c
 template <class T>
 std::vector<T> conv_dot(const ConvTable& t, const std::vector<V3<T>>& a, const std::vector<V3<T>>& h) {
   std::vector<T> d(t.out.size(), T(0));
-  const int nb = t.b.size();
-  for (int i = 0; i < t.a.size(); ++i) {
+  const int na = t.a.size(), nb = t.b.size();
+  for (int i = 0; i < na; ++i) {
     const auto& x = a[i];
     const int* row = t.out_index.data() + static_cast<std::size_t>(i) * nb;
     for (int j = 0; j < nb; ++j) {
@@ -228,15 +256,18 @@ std::vector<T> conv_dot(const ConvTable& t, const std::vector<V3<T>>& a, const s
   return d;
 }
 
-std::vector<double> conv_scalar(const ConvTable& t, const std::vector<double>& a, const std::vector<double>& b) {
+// Radius of a product sum from the factors' 1-norms (na, nb) and radii (ra,
+// rb): sum over pairs of ra nb + na rb + k ra rb + g na nb (see conv_*_r).
+std::vector<double> conv_radius(const ConvTable& t, const std::vector<double>& na, const std::vector<double>& ra,
+                                const std::vector<double>& nb, const std::vector<double>& rb, double k, double g) {
   std::vector<double> out(t.out.size(), 0.0);
-  const int nb = t.b.size();
-  for (int i = 0; i < t.a.size(); ++i) {
-    const double x = a[i];
-    if (x == 0) continue;
-    const int* row = t.out_index.data() + static_cast<std::size_t>(i) * nb;
-    for (int j = 0; j < nb; ++j) out[row[j]] += x * b[j];
+  const int sa = t.a.size(), sb = t.b.size();
+  for (int i = 0; i < sa; ++i) {
+    const double x = na[i], rx = ra[i];
+    const int* row = t.out_index.data() + static_cast<std::size_t>(i) * sb;
+    for (int j = 0; j < sb; ++j) out[row[j]] += rx * (nb[j] + k * rb[j]) + x * (rb[j] + g * nb[j]);
   }
+  for (double& v : out) v *= kInflate;
   return out;
 }
 
@@ -259,11 +290,13 @@ VecR control_points_r(int dim, int order, const std::vector<V3<double>>& p, cons
   const auto& absA = basis_change(dim, order).abs_lagrange_to_bernstein;
   const int n = static_cast<int>(p.size());
   const double g = gamma(n + 4);
+  std::vector<double> pn(n);
+  for (int j = 0; j < n; ++j) pn[j] = norm_inf(p[j]);
   out.r.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
     double mag = 0, prop = 0;
     for (int j = 0; j < n; ++j) {
-      mag += absA(i, j) * norm_inf(p[j]);
+      mag += absA(i, j) * pn[j];
       prop += absA(i, j) * rp[j];
     }
     // the exact A differs from the rounded one by <= 2u|A|: covered by gamma(n+4)
@@ -302,7 +335,8 @@ VecR t_derivative_r(const VecR& c) {
 
 void scale_r(const Shape& s, VecR& c) {
   scale<double>(s, c.v);
-  for (int i = 0; i < s.size(); ++i) c.r[i] = (c.r[i] * weight(s, i) + kUnit * norm_inf(c.v[i])) * kInflate;
+  const auto& ws = weights(s);
+  for (int i = 0; i < s.size(); ++i) c.r[i] = (c.r[i] * ws[i] + kUnit * norm_inf(c.v[i])) * kInflate;
 }
 
 VecR conv_cross_r(const ConvTable& t, const VecR& a, const VecR& b) {
@@ -311,11 +345,7 @@ VecR conv_cross_r(const ConvTable& t, const VecR& a, const VecR& b) {
   std::vector<double> na(a.v.size()), nb(b.v.size());
   for (std::size_t i = 0; i < na.size(); ++i) na[i] = norm1(a.v[i]);
   for (std::size_t i = 0; i < nb.size(); ++i) nb[i] = norm1(b.v[i]);
-  auto t1 = conv_scalar(t, a.r, nb), t2 = conv_scalar(t, na, b.r), t3 = conv_scalar(t, a.r, b.r),
-       t4 = conv_scalar(t, na, nb);
-  const double g = gamma(2 * t.max_pairs + 2);
-  h.r.resize(h.v.size());
-  for (std::size_t i = 0; i < h.r.size(); ++i) h.r[i] = (t1[i] + t2[i] + 2 * t3[i] + g * t4[i]) * kInflate;
+  h.r = conv_radius(t, na, a.r, nb, b.r, 2, gamma(2 * t.max_pairs + 2));
   return h;
 }
 
@@ -329,11 +359,7 @@ ScalarR conv_dot_r(const ConvTable& t, const VecR& a, const VecR& h) {
   std::vector<double> na(a.v.size()), nh(h.v.size());
   for (std::size_t i = 0; i < na.size(); ++i) na[i] = norm1(a.v[i]);
   for (std::size_t i = 0; i < nh.size(); ++i) nh[i] = norm1(h.v[i]);
-  auto t1 = conv_scalar(t, a.r, nh), t2 = conv_scalar(t, na, h.r), t3 = conv_scalar(t, a.r, h.r),
-       t4 = conv_scalar(t, na, nh);
-  const double g = gamma(3 * t.max_pairs + 2);
-  d.r.resize(d.v.size());
-  for (std::size_t i = 0; i < d.r.size(); ++i) d.r[i] = (t1[i] + t2[i] + 3 * t3[i] + g * t4[i]) * kInflate;
+  d.r = conv_radius(t, na, a.r, nh, h.r, 3, gamma(3 * t.max_pairs + 2));
   return d;
 }
 
@@ -374,7 +400,7 @@ std::vector<mpq_class> tet_scaled_exact(int order, const Eigen::Vector3d* nodes)
   const int n = tet_node_count(order);
   auto p = shifted<mpq_class>(nodes, n, nodes[0]);
   auto b = control_points<mpq_class>(3, order, p);
-  Shape s{3, order, 0};
+  const Shape s = make_shape(3, order, 0);
   std::vector<V3<mpq_class>> g[3];
   for (int k = 0; k < 3; ++k) {
     g[k] = simplex_derivative<mpq_class>(s, b, k + 1);
@@ -403,7 +429,7 @@ ScalarR slab_scaled(int k, const Eigen::Vector3d* middle, const std::array<Eigen
     // shift (u), three products with alpha_v (exact), two sums, one division.
     x.r[2 * i + 1] = 8 * kUnit * cap_mag * kInflate;
   }
-  Shape s{2, k, 1};
+  const Shape s = make_shape(2, k, 1);
   VecR xu = simplex_derivative_r(s, x, 1), xv = simplex_derivative_r(s, x, 2), xt = t_derivative_r(x);
   scale_r(plan.c1, xu);
   scale_r(plan.c2, xv);
@@ -422,7 +448,7 @@ std::vector<mpq_class> slab_scaled_exact(int k, const Eigen::Vector3d* middle, c
   for (int v = 0; v < 3; ++v)
     for (int d = 0; d < 3; ++d) c[v][d] = mpq_class(cap[v][d]) - mpq_class(middle[0][d]);
   auto x = slab_control_points<mpq_class>(k, p, c);
-  Shape s{2, k, 1};
+  const Shape s = make_shape(2, k, 1);
   auto xu = simplex_derivative<mpq_class>(s, x, 1), xv = simplex_derivative<mpq_class>(s, x, 2);
   auto xt = t_derivative<mpq_class>(x);
   scale<mpq_class>(plan.c1, xu);
@@ -436,8 +462,9 @@ std::vector<mpq_class> slab_scaled_exact(int k, const Eigen::Vector3d* middle, c
 
 // Scaled -> plain Bernstein coefficients (division by the exact weight).
 void unscale(const Shape& s, ScalarR& d) {
+  const auto& ws = weights(s);
   for (int i = 0; i < s.size(); ++i) {
-    const double w = weight(s, i);
+    const double w = ws[i];
     d.v[i] /= w;
     d.r[i] = (d.r[i] / w + kUnit * std::abs(d.v[i])) * kInflate;
   }
@@ -670,7 +697,7 @@ void check_order(int order) {
 
 Certificate certify_tet(int order, const Eigen::Vector3d* nodes, const CertificateOptions& o) {
   check_order(order);
-  Shape s{3, 3 * (order - 1), 0};
+  const Shape s = make_shape(3, 3 * (order - 1), 0);
   ScalarR d = tet_scaled(order, nodes);
   unscale(s, d);
   Piece root = make_root(s, std::move(d));
@@ -696,7 +723,7 @@ Certificate certify_tet(int order, const Eigen::Vector3d* nodes, const Certifica
 Certificate certify_slab(int k, const Eigen::Vector3d* middle, const std::array<Eigen::Vector3d, 3>& cap,
                          SlabSide side, const std::array<bool, 3>& collapsed, const CertificateOptions& o) {
   check_order(k);
-  Shape s{2, 3 * k - 2, 2};
+  const Shape s = make_shape(2, 3 * k - 2, 2);
   // Middle corner v is node v in the internal triangle order.
   unsigned mask = 0;
   for (int v = 0; v < 3; ++v)
@@ -734,7 +761,7 @@ Certificate certify_slab(int k, const Eigen::Vector3d* middle, const std::array<
 
 JacobianCoefficients tet_jacobian_coefficients(int order, const Eigen::Vector3d* nodes) {
   check_order(order);
-  Shape s{3, 3 * (order - 1), 0};
+  const Shape s = make_shape(3, 3 * (order - 1), 0);
   ScalarR d = tet_scaled(order, nodes);
   unscale(s, d);
   return {3, s.n, 0, std::move(d.v), std::move(d.r)};
@@ -743,7 +770,7 @@ JacobianCoefficients tet_jacobian_coefficients(int order, const Eigen::Vector3d*
 JacobianCoefficients slab_jacobian_coefficients(int k, const Eigen::Vector3d* middle,
                                                 const std::array<Eigen::Vector3d, 3>& cap, SlabSide side) {
   check_order(k);
-  Shape s{2, 3 * k - 2, 2};
+  const Shape s = make_shape(2, 3 * k - 2, 2);
   ScalarR d = slab_scaled(k, middle, cap, side);
   unscale(s, d);
   return {2, s.n, 2, std::move(d.v), std::move(d.r)};
@@ -751,7 +778,7 @@ JacobianCoefficients slab_jacobian_coefficients(int k, const Eigen::Vector3d* mi
 
 std::vector<double> exact_tet_jacobian_coefficients(int order, const Eigen::Vector3d* nodes) {
   check_order(order);
-  Shape s{3, 3 * (order - 1), 0};
+  const Shape s = make_shape(3, 3 * (order - 1), 0);
   auto e = tet_scaled_exact(order, nodes);
   std::vector<double> out(e.size());
   for (int i = 0; i < s.size(); ++i) out[i] = mpq_class(e[i] / mpq_class(weight(s, i))).get_d();

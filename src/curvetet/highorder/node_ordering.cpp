@@ -166,6 +166,24 @@ const std::vector<int>& vtk_tet_permutation(int order) {
   return cache[order];
 }
 
+int tet_node_index(int order, const std::array<int, 3>& q) {
+  check_order(order);
+  static std::map<std::array<int, 3>, int> cache[kMaxOrder + 1];
+  static std::once_flag once[kMaxOrder + 1];
+  std::call_once(once[order], [order] { cache[order] = node_lookup<3>(order); });
+  auto it = cache[order].find(q);
+  return it == cache[order].end() ? -1 : it->second;
+}
+
+int triangle_node_index(int order, const std::array<int, 2>& q) {
+  check_order(order);
+  static std::map<std::array<int, 2>, int> cache[kMaxOrder + 1];
+  static std::once_flag once[kMaxOrder + 1];
+  std::call_once(once[order], [order] { cache[order] = node_lookup<2>(order); });
+  auto it = cache[order].find(q);
+  return it == cache[order].end() ? -1 : it->second;
+}
+
 const std::vector<int>& tet_face_nodes(int order, int face) {
   check_order(order);
   static std::vector<int> cache[kMaxOrder + 1][4];

@@ -31,6 +31,11 @@ int tet_order_from_nodes(int nodes);
 std::array<int, 2> triangle_node(int order, int i);
 std::array<int, 3> tet_node(int order, int i);
 
+// Inverse lookup: internal index of the node at lattice point q (times P),
+// -1 if q is not a lattice point of the element.
+int tet_node_index(int order, const std::array<int, 3>& q);
+int triangle_node_index(int order, const std::array<int, 2>& q);
+
 // Gmsh element type numbers (MSH); 0 if the order has none.
 int gmsh_triangle_type(int order);
 int gmsh_tet_type(int order);

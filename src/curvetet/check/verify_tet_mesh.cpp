@@ -1,0 +1,249 @@
+#include "curvetet/check/verify_tet_mesh.hpp"
+
+#include "curvetet/check/boundary_linearization.hpp"
+#include "curvetet/check/closest_points.hpp"
+#include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/highorder/quality.hpp"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace curvetet::check {
+
+namespace {
+
+constexpr std::size_t kExamples = 20;
+
+void check_positivity(const mesh::TetMesh& m, const TetMeshVerifyOptions& o, TetMeshVerification& r) {
+  const int n = m.num_tets();
+  r.validity.assign(n, highorder::Validity::undecided);
+  r.min_det_lower.assign(n, 0);
+  r.min_scaled_jacobian.assign(n, 0);
+  r.max_amips.assign(n, 0);
+  std::vector<double> upper(n, 0), mean(n, 0);
+  tbb::parallel_for(0, n, [&](int t) {
+    std::vector<Eigen::Vector3d> nodes(m.tet_nodes());
+    for (int i = 0; i < m.tet_nodes(); ++i) nodes[i] = m.nodes[m.tet(t)[i]];
+    auto c = highorder::certify_tet(m.order, nodes.data(), o.certificate);
+    r.validity[t] = c.validity;
+    r.min_det_lower[t] = c.min_det_lower;
+    upper[t] = c.min_det_upper;
+    auto q = highorder::tet_quality(m.order, nodes.data());
+    r.min_scaled_jacobian[t] = q.min_scaled_jacobian;
+    r.max_amips[t] = q.max_amips;
+    mean[t] = q.mean_amips;
+  });
+  r.min_det_lower_bound = r.min_det_upper_bound = r.worst_scaled_jacobian = std::numeric_limits<double>::infinity();
+  double sum = 0;
+  for (int t = 0; t < n; ++t) {
+    switch (r.validity[t]) {
+      case highorder::Validity::positive: ++r.positive; break;
+      case highorder::Validity::invalid:
+        ++r.invalid;
+        if (r.invalid_examples.size() < kExamples) r.invalid_examples.push_back(t);
+        break;
+      case highorder::Validity::undecided:
+        ++r.undecided;
+        if (r.undecided_examples.size() < kExamples) r.undecided_examples.push_back(t);
+        break;
+    }
+    r.min_det_lower_bound = std::min(r.min_det_lower_bound, r.min_det_lower[t]);
+    r.min_det_upper_bound = std::min(r.min_det_upper_bound, upper[t]);
+    r.worst_scaled_jacobian = std::min(r.worst_scaled_jacobian, r.min_scaled_jacobian[t]);
+    r.worst_amips = std::max(r.worst_amips, r.max_amips[t]);
+    sum += mean[t];
+  }
+  r.mean_amips = n ? sum / n : 0;
+  if (n == 0) r.min_det_lower_bound = r.min_det_upper_bound = r.worst_scaled_jacobian = 0;
+}
+
+// Tet faces used once become the boundary; compares with the listed one.
+mesh::TetMesh check_conformity(const mesh::TetMesh& m, TetMeshVerification& r) {
+  struct Use {
+    int tet, face, count;
+  };
+  std::map<std::array<int, 3>, Use> faces;
+  for (int t = 0; t < m.num_tets(); ++t)
+    for (int f = 0; f < 4; ++f) {
+      std::array<int, 3> c;
+      for (int k = 0; k < 3; ++k) c[k] = m.tet(t)[highorder::kTetFaces[f][k]];
+      std::sort(c.begin(), c.end());
+      auto [it, inserted] = faces.emplace(c, Use{t, f, 1});
+      if (!inserted && ++it->second.count == 3) ++r.overshared_faces;
+    }
+  mesh::TetMesh out = m;
+  if (m.num_boundary() == 0 && m.num_tets() > 0) {
+    // No boundary listed: derive it.
+    r.boundary_listed = false;
+    for (const auto& [key, use] : faces)
+      if (use.count == 1)
+        for (int n : highorder::tet_face_nodes(m.order, use.face)) out.boundary.push_back(m.tet(use.tet)[n]);
+    return out;
+  }
+  std::map<std::array<int, 3>, int> listed;
+  for (int b = 0; b < m.num_boundary(); ++b) {
+    const int* tri = m.boundary_triangle(b);
+    std::array<int, 3> c{tri[0], tri[1], tri[2]};
+    std::sort(c.begin(), c.end());
+    listed.emplace(c, b);
+    auto it = faces.find(c);
+    if (it == faces.end() || it->second.count != 1) {
+      ++r.boundary_extra;
+      continue;
+    }
+    // Align the listed triangle with the tet's outward face (a rotation).
+    const int* tet = m.tet(it->second.tet);
+    const int f = it->second.face;
+    int local[3]; // tet-local corner of the triangle's corners
+    for (int k = 0; k < 3; ++k)
+      for (int v = 0; v < 4; ++v)
+        if (tet[v] == tri[k]) local[k] = v;
+    int rot = 0;
+    while (highorder::kTetFaces[f][rot] != local[0]) ++rot;
+    if (highorder::kTetFaces[f][(rot + 1) % 3] != local[1]) {
+      ++r.boundary_flipped;
+      continue;
+    }
+    // Triangle node (a, b) sits at tet lattice point c0 + a/P (c1-c0) + b/P (c2-c0).
+    const int p = m.order;
+    const std::array<int, 3> corner[4] = {{0, 0, 0}, {p, 0, 0}, {0, p, 0}, {0, 0, p}};
+    bool same = true;
+    for (int i = 0; i < m.triangle_nodes() && same; ++i) {
+      auto [a, bb] = highorder::triangle_node(p, i);
+      std::array<int, 3> q;
+      for (int k = 0; k < 3; ++k)
+        q[k] = corner[local[0]][k] + (a * (corner[local[1]][k] - corner[local[0]][k]) +
+                                      bb * (corner[local[2]][k] - corner[local[0]][k])) / p;
+      same = tet[highorder::tet_node_index(p, q)] == tri[i];
+    }
+    if (!same) ++r.boundary_node_mismatch;
+  }
+  for (const auto& [key, use] : faces)
+    if (use.count == 1 && !listed.count(key)) ++r.boundary_missing;
+  return out;
+}
+
+void check_distances(const BoundaryLinearization& lin, const TetMeshVerifyOptions& o, TetMeshVerification& r) {
+  const mesh::SurfaceMesh& in = *o.input;
+  r.has_input = true;
+  r.epsilon = o.epsilon;
+  double d = 1.0;
+  auto stats = [&d](const std::vector<double>& v, double& max, double& mean) {
+    max = 0;
+    double sum = 0;
+    for (double x : v) {
+      max = std::max(max, x);
+      sum += x;
+    }
+    max /= d;
+    mean = v.empty() ? 0 : sum / v.size() / d;
+  };
+  // Input vertices that belong to a face (isolated ones are ignored, as in
+  // the input preconditions).
+  std::vector<char> used(in.vertices.size(), 0);
+  for (const auto& f : in.faces)
+    for (int v : f) used[v] = 1;
+  std::vector<mesh::Vec3> points;
+  for (std::size_t i = 0; i < used.size(); ++i)
+    if (used[i]) points.push_back(in.vertices[i]);
+  r.bbox_diagonal = mesh::bbox_diagonal(points);
+  d = r.bbox_diagonal > 0 ? r.bbox_diagonal : 1.0;
+  stats(distances_to_surface(lin.surface, points), r.input_to_boundary_max, r.input_to_boundary_mean);
+  stats(distances_to_surface(in, lin.surface.vertices), r.boundary_to_input_max, r.boundary_to_input_mean);
+}
+
+std::string list(const std::vector<int>& ids) {
+  std::string s;
+  for (int id : ids) s += (s.empty() ? "" : ", ") + std::to_string(id);
+  return s;
+}
+
+} // namespace
+
+TetMeshVerification verify_tet_mesh(const mesh::TetMesh& m, const TetMeshVerifyOptions& o) {
+  TetMeshVerification r;
+  r.order = m.order;
+  r.num_nodes = m.nodes.size();
+  r.num_tets = m.num_tets();
+  r.num_boundary = m.num_boundary();
+  check_positivity(m, o, r);
+  mesh::TetMesh with_boundary = check_conformity(m, r);
+  r.segments_per_edge = o.segments_per_edge > 0 ? o.segments_per_edge : 2 * m.order;
+  BoundaryLinearization lin = linearize_boundary(with_boundary, r.segments_per_edge);
+  r.linearized_faces = lin.surface.faces.size();
+  r.surface = check_preconditions(mesh::to_soup(lin.surface));
+  if (o.input) check_distances(lin, o, r);
+  return r;
+}
+
+std::string TetMeshVerification::text() const {
+  std::string s = fmt::format("{}: order {}, {} nodes, {} tets, {} boundary triangles\n", ok() ? "VALID" : "INVALID",
+                              order, num_nodes, num_tets, num_boundary);
+  s += fmt::format("  positivity: {} positive, {} invalid, {} undecided; min det J in [{:.6g}, {:.6g}]{}\n", positive,
+                   invalid, undecided, min_det_lower_bound, min_det_upper_bound, positivity_ok() ? "" : "  FAIL");
+  if (!invalid_examples.empty()) s += "    invalid tets (0-based): " + list(invalid_examples) + "\n";
+  if (!undecided_examples.empty()) s += "    undecided tets (0-based): " + list(undecided_examples) + "\n";
+  s += fmt::format("  quality: min scaled Jacobian {:.4g}, AMIPS max {:.4g}, mean {:.4g}\n", worst_scaled_jacobian,
+                   worst_amips, mean_amips);
+  s += fmt::format(
+      "  conformity: {} faces shared by >2 tets, boundary: {} missing, {} extra, {} flipped, {} with other nodes{}{}\n",
+      overshared_faces, boundary_missing, boundary_extra, boundary_flipped, boundary_node_mismatch,
+      boundary_listed ? "" : " (no boundary in the file: derived from the tets)", conformity_ok() ? "" : "  FAIL");
+  s += fmt::format("  boundary surface ({} segments per edge, {} flat triangles): {}\n", segments_per_edge,
+                   linearized_faces, surface.ok() ? "closed, manifold, oriented, no self-intersection" : "FAIL");
+  if (!surface.ok())
+    for (const auto& d : surface.defects) s += "    " + d.message + "\n";
+  if (has_input)
+    s += fmt::format(
+        "  distance (relative to input bbox diagonal {:.6g}): input->boundary max {:.3g} mean {:.3g}, "
+        "boundary->input max {:.3g} mean {:.3g}; epsilon {:.3g}{}\n",
+        bbox_diagonal, input_to_boundary_max, input_to_boundary_mean, boundary_to_input_max, boundary_to_input_mean,
+        epsilon, distance_ok() ? "" : "  FAIL");
+  return s;
+}
+
+nlohmann::json TetMeshVerification::json() const {
+  nlohmann::json j;
+  j["valid"] = ok();
+  j["order"] = order;
+  j["nodes"] = num_nodes;
+  j["tets"] = num_tets;
+  j["boundary_triangles"] = num_boundary;
+  j["positivity"] = {{"ok", positivity_ok()},
+                     {"positive", positive},
+                     {"invalid", invalid},
+                     {"undecided", undecided},
+                     {"invalid_examples", invalid_examples},
+                     {"undecided_examples", undecided_examples},
+                     {"min_det_lower_bound", min_det_lower_bound},
+                     {"min_det_upper_bound", min_det_upper_bound}};
+  j["quality"] = {{"min_scaled_jacobian", worst_scaled_jacobian}, {"max_amips", worst_amips}, {"mean_amips", mean_amips}};
+  j["conformity"] = {{"ok", conformity_ok()},
+                     {"faces_shared_by_more_than_two_tets", overshared_faces},
+                     {"boundary_listed", boundary_listed},
+                     {"boundary_missing", boundary_missing},
+                     {"boundary_extra", boundary_extra},
+                     {"boundary_flipped", boundary_flipped},
+                     {"boundary_node_mismatch", boundary_node_mismatch}};
+  j["boundary_surface"] = surface.json();
+  j["boundary_surface"]["segments_per_edge"] = segments_per_edge;
+  j["boundary_surface"]["linearization"] =
+      "exact predicates on a conforming flat triangulation of the curved boundary (segments_per_edge^2 per face)";
+  if (has_input)
+    j["distance"] = {{"ok", distance_ok()},
+                     {"epsilon_relative", epsilon},
+                     {"bbox_diagonal", bbox_diagonal},
+                     {"input_to_boundary_max", input_to_boundary_max},
+                     {"input_to_boundary_mean", input_to_boundary_mean},
+                     {"boundary_to_input_max", boundary_to_input_max},
+                     {"boundary_to_input_mean", boundary_to_input_mean}};
+  return j;
+}
+
+} // namespace curvetet::check
