@@ -17,6 +17,8 @@ namespace {
 struct TetSource {
   int face = -1;                             // -1: linear fill tet
   std::array<std::array<double, 3>, 4> ref{}; // reference (u, v, w) of each corner
+  std::array<bool, 4> on_middle{};            // corner is on the middle surface
+  std::array<bool, 4> pinched{};              // corner is a singular vertex
 };
 
 mesh::Vec3 slab_point(const CurvedMiddle& s, int face, const std::array<double, 3>& uvw) {
@@ -25,6 +27,22 @@ mesh::Vec3 slab_point(const CurvedMiddle& s, int face, const std::array<double, 
   const mesh::Vec3 bottom = (1 - u - v) * s.bottom[f[0]] + u * s.bottom[f[1]] + v * s.bottom[f[2]];
   const mesh::Vec3 middle = highorder::triangle_point(s.degree, s.middle_nodes[face].data(), Eigen::Vector2d(u, v));
   return (1 - w) * bottom + w * middle;
+}
+
+// The slab map has a zero w-derivative on a pinched pillar, so a tet placed
+// through it is degenerate (det J = 0) at the pinched corner. Nodes whose
+// carrier (the corners with non-zero weight) holds a pinched corner are
+// therefore placed on the straight simplex instead, unless they lie on the
+// middle surface, which must follow the curved patch. The rule depends only
+// on the node's carrier, so every tet sharing the node agrees on it.
+bool straight_near_pinch(const TetSource& src, const std::array<double, 4>& lambda) {
+  bool pinched = false, on_middle = true;
+  for (int j = 0; j < 4; ++j)
+    if (lambda[j] > 0) {
+      pinched |= src.pinched[j];
+      on_middle &= src.on_middle[j];
+    }
+  return pinched && !on_middle;
 }
 
 } // namespace
@@ -69,6 +87,11 @@ mesh::TetMesh assemble_curved_mesh(const CurvedMiddle& s, const mesh::LinearTetM
         const int c = st.corners[j];
         ids[j] = c < 3 ? face[c] : middle_id[face[c - 3]];
         src.ref[j] = shell::reference_corner(c);
+        src.pinched[j] = s.singular[face[c % 3]];
+        src.on_middle[j] = c >= 3 || src.pinched[j];
+        // A pinched corner is its upper corner too: evaluate it at w = 1 so
+        // that middle-surface nodes through it land on the curved patch.
+        if (src.pinched[j]) src.ref[j][2] = 1.0;
       }
       // The tet face whose corners are the three middle vertices lies on the
       // middle surface: it is a boundary triangle.
@@ -100,6 +123,8 @@ mesh::TetMesh assemble_curved_mesh(const CurvedMiddle& s, const mesh::LinearTetM
       const auto lambda = highorder::tet_node_barycentric(order, i);
       mesh::Vec3 x = mesh::Vec3::Zero();
       if (src.face < 0) {
+        for (int j = 0; j < 4; ++j) x += lambda[j] * corners[tets[t][j]];
+      } else if (straight_near_pinch(src, lambda)) {
         for (int j = 0; j < 4; ++j) x += lambda[j] * corners[tets[t][j]];
       } else {
         std::array<double, 3> uvw{0, 0, 0};

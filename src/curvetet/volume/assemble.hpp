@@ -12,7 +12,10 @@
 // with P = k + 1 (or more) the order-P Lagrange tet reproduces it exactly at
 // every point, not just at the nodes. A slab tet whose pillar is pinched
 // (singular vertex: bottom = middle) has no volume and is left out; the
-// pinched vertex's bottom and middle are one mesh vertex.
+// pinched vertex's bottom and middle are one mesh vertex. The slab map is
+// degenerate on a pinched pillar, so off the middle surface the nodes around
+// a pinched vertex are placed on straight simplices (assemble.cpp).
+// Positivity is not assumed here: the caller certifies the result.
 #include "curvetet/mesh/linear_tet_mesh.hpp"
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/mesh/tet_mesh.hpp"
