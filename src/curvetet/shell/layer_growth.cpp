@@ -1,0 +1,163 @@
+#include "curvetet/shell/layer_growth.hpp"
+
+#include "curvetet/core/error.hpp"
+#include "curvetet/core/log.hpp"
+#include "curvetet/mesh/edge_topology.hpp"
+#include "curvetet/shell/invariants.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+
+namespace curvetet::shell {
+
+namespace {
+
+constexpr int kMaxHalvings = 80;
+
+struct Grower {
+  Shell& s;
+  const LayerGrowthSpec& spec;
+  std::vector<double>& len;
+  mesh::VertexFaces vf;
+  std::vector<std::vector<int>> trackers;
+
+  void place(int v) {
+    const Vec3& d = spec.direction[v];
+    if (d.isZero() || len[v] == 0) {
+      s.top[v] = s.middle[v];
+      s.bottom[v] = s.middle[v];
+      return;
+    }
+    s.top[v] = spec.grow_top ? Vec3(s.middle[v] + len[v] * d) : s.middle[v];
+    s.bottom[v] = spec.grow_bottom ? Vec3(s.middle[v] - len[v] * d) : s.middle[v];
+  }
+
+  std::vector<int> prisms_of(const std::vector<int>& vertices) const {
+    std::vector<int> out;
+    for (int v : vertices)
+      for (int i = vf.offsets[v]; i < vf.offsets[v + 1]; ++i) out.push_back(vf.faces[i]);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  // Prisms among (or meeting caps of) `prisms` that break invariant 1-3.
+  std::vector<int> implicated(const std::vector<int>& prisms) const {
+    std::vector<int> bad = non_positive_prisms(s, prisms);
+    const auto sec = invalid_section_prisms(s, prisms, trackers);
+    bad.insert(bad.end(), sec.begin(), sec.end());
+    const int F = s.num_prisms();
+    for (auto [a, b] : cap_intersections(s, prisms)) {
+      bad.push_back(a % F);
+      bad.push_back(b % F);
+    }
+    std::sort(bad.begin(), bad.end());
+    bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+    return bad;
+  }
+
+  std::vector<int> vertices_of(const std::vector<int>& prisms) const {
+    std::vector<int> out;
+    for (int f : prisms)
+      for (int v : s.faces[f]) out.push_back(v);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+};
+
+} // namespace
+
+LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<double>& len) {
+  using clock = std::chrono::steady_clock;
+  LayerGrowthStats stats;
+  const int n = s.num_vertices();
+  s.top = s.middle;
+  s.bottom = s.middle;
+  len.assign(n, 0.0);
+  Grower g{s, spec, len, mesh::build_vertex_faces(n, s.faces), input_trackers(s)};
+
+  // 1. Initial thin layer.
+  auto t0 = clock::now();
+  std::vector<int> changed;
+  for (int v = 0; v < n; ++v)
+    if (!spec.direction[v].isZero()) {
+      len[v] = spec.initial;
+      g.place(v);
+      changed.push_back(v);
+    }
+  while (!changed.empty()) {
+    const auto bad = g.implicated(g.prisms_of(changed));
+    if (bad.empty()) break;
+    if (++stats.initial_halvings > kMaxHalvings)
+      throw Error(ExitCode::internal, fmt::format("shell: no valid initial layer after {} halvings ({} prisms fail, "
+                                                  "first {})",
+                                                  kMaxHalvings, bad.size(), bad.front()));
+    changed.clear();
+    for (int v : g.vertices_of(bad))
+      if (len[v] > 0) {
+        len[v] *= 0.5;
+        g.place(v);
+        changed.push_back(v);
+      }
+    if (changed.empty())
+      throw Error(ExitCode::internal, fmt::format("shell: prism {} fails with all its pillars pinched", bad.front()));
+  }
+  stats.seconds_initial = std::chrono::duration<double>(clock::now() - t0).count();
+  if (spec.after_stage) spec.after_stage(s, "initial layer");
+
+  // 2. Thickening rounds.
+  t0 = clock::now();
+  std::vector<double> factor(n, 2.0);
+  std::vector<char> done(n, 0);
+  for (int v = 0; v < n; ++v) done[v] = spec.direction[v].isZero() || len[v] >= spec.target;
+  for (int round = 0; round < spec.max_rounds; ++round) {
+    changed.clear();
+    for (int v = 0; v < n; ++v)
+      if (!done[v]) changed.push_back(v);
+    if (changed.empty()) break;
+    ++stats.rounds;
+    const std::vector<double> old = len;
+    for (int v : changed) {
+      len[v] = std::min(spec.target, len[v] * factor[v]);
+      g.place(v);
+    }
+    std::vector<char> failed(n, 0);
+    std::vector<int> check = g.prisms_of(changed);
+    while (!check.empty()) {
+      const auto bad = g.implicated(check);
+      if (bad.empty()) break;
+      std::vector<int> reverted;
+      for (int v : g.vertices_of(bad))
+        if (len[v] != old[v]) {
+          len[v] = old[v];
+          g.place(v);
+          failed[v] = 1;
+          reverted.push_back(v);
+        }
+      if (reverted.empty())
+        throw Error(ExitCode::internal,
+                    fmt::format("shell: prism {} invalid although none of its vertices moved", bad.front()));
+      stats.reverts += static_cast<long long>(reverted.size());
+      check = g.prisms_of(reverted);
+    }
+    int grown = 0;
+    for (int v : changed) {
+      if (failed[v]) {
+        factor[v] = 1 + (factor[v] - 1) / 2;
+        if (factor[v] < 1.01) done[v] = 1;
+      } else {
+        ++grown;
+        if (len[v] >= spec.target) done[v] = 1;
+      }
+    }
+    logger().debug("shell: thickening round {}: {} of {} vertices grew", round + 1, grown, changed.size());
+  }
+  stats.seconds_rounds = std::chrono::duration<double>(clock::now() - t0).count();
+  if (spec.after_stage) spec.after_stage(s, "thickening");
+  return stats;
+}
+
+} // namespace curvetet::shell

@@ -1,0 +1,59 @@
+#pragma once
+// The prismatic shell S = (B, V, T, F) (DESIGN.md §2-3, Jiang et al. 2020).
+//
+// bottom[v], middle[v], top[v] are the three positions of shell vertex v; all
+// three surfaces share the triangle list `faces` (counter-clockwise seen from
+// outside, i.e. from the top side). Prism f is (bottom, middle, top) of
+// faces[f] and splits into two slabs: the bottom slab (lower = B, upper = V)
+// and the top slab (lower = V, upper = T). The "pillar" of vertex v in a slab
+// is upper[v] - lower[v] (oriented bottom -> top). A pillar is zero exactly
+// when its two end positions are bitwise equal (singular vertices: B = V = T).
+//
+// tracked[f] lists the input faces (ids into `input.faces`) whose part inside
+// prism f is parametrised by it. Initially (middle = input) prism f tracks its
+// own input face; after isolation splits a face, both halves track it.
+#include "curvetet/mesh/surface_mesh.hpp"
+
+#include <vector>
+
+namespace curvetet::shell {
+
+using Vec3 = mesh::Vec3;
+using Tri = mesh::Tri;
+
+// A point of the middle surface: barycentric coordinates in prism `prism`'s
+// middle triangle: position = (1-u-v)*c0 + u*c1 + v*c2 with c_k =
+// middle[faces[prism][k]].
+struct MapPoint {
+  int prism = -1;
+  double u = 0, v = 0;
+};
+
+// A point of the input surface followed through every shell edit:
+// position on input face `input_face` and its image Π(position).
+struct TrackedPoint {
+  Vec3 position;
+  int input_face = -1;
+  MapPoint image;
+};
+
+struct Shell {
+  std::vector<Vec3> bottom, middle, top; // one entry per shell vertex
+  std::vector<Tri> faces;                // shared F
+  std::vector<std::vector<int>> tracked; // per prism: input face ids, sorted
+  std::vector<char> singular;            // per shell vertex: pinched pillar
+  mesh::SurfaceMesh input;               // the input surface M
+  // Input vertices first (points[i] is input vertex i), then any other
+  // constraint points.
+  std::vector<TrackedPoint> points;
+
+  int num_vertices() const { return static_cast<int>(middle.size()); }
+  int num_prisms() const { return static_cast<int>(faces.size()); }
+};
+
+// The three surfaces as meshes (same faces).
+mesh::SurfaceMesh bottom_surface(const Shell& s);
+mesh::SurfaceMesh middle_surface(const Shell& s);
+mesh::SurfaceMesh top_surface(const Shell& s);
+
+} // namespace curvetet::shell
