@@ -1,0 +1,62 @@
+#include "curvetet/volume/background.hpp"
+
+#include "curvetet/core/error.hpp"
+#include "curvetet/geometry/box_pairs.hpp"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <CGAL/intersections.h>
+
+#include <algorithm>
+
+namespace curvetet::volume {
+namespace {
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb>;
+using Delaunay = CGAL::Delaunay_triangulation_3<K, Tds>;
+K::Point_3 cg(const mesh::Vec3& p) { return {p.x(), p.y(), p.z()}; }
+} // namespace
+
+BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points) {
+  std::vector<std::pair<K::Point_3, int>> input;
+  input.reserve(points.size());
+  for (int i = 0; i < static_cast<int>(points.size()); ++i) input.emplace_back(cg(points[i]), i);
+  Delaunay dt(input.begin(), input.end());
+  if (dt.number_of_vertices() != points.size())
+    throw Error(ExitCode::internal, "volume: background points are not pairwise distinct");
+  if (dt.dimension() != 3) throw Error(ExitCode::internal, "volume: background points are coplanar");
+  BackgroundMesh bg;
+  bg.points = points;
+  bg.tets.reserve(dt.number_of_finite_cells());
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c)
+    bg.tets.push_back({c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()});
+  return bg;
+}
+
+std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles) {
+  const auto& p = bg.points;
+  std::vector<geometry::Box3> tet_boxes, tri_boxes;
+  tet_boxes.reserve(bg.tets.size());
+  for (const auto& t : bg.tets) {
+    auto b = geometry::bounding_box(p[t[0]], p[t[1]], p[t[2]]);
+    b.min = b.min.cwiseMin(p[t[3]]);
+    b.max = b.max.cwiseMax(p[t[3]]);
+    tet_boxes.push_back(b);
+  }
+  tri_boxes.reserve(triangles.size());
+  for (const auto& t : triangles) tri_boxes.push_back(geometry::bounding_box(p[t[0]], p[t[1]], p[t[2]]));
+  std::vector<std::vector<int>> out(bg.tets.size());
+  for (auto [i, j] : geometry::overlapping_pairs(tet_boxes, tri_boxes)) {
+    const auto& t = bg.tets[i];
+    const auto& f = triangles[j];
+    K::Tetrahedron_3 tet(cg(p[t[0]]), cg(p[t[1]]), cg(p[t[2]]), cg(p[t[3]]));
+    K::Triangle_3 tri(cg(p[f[0]]), cg(p[f[1]]), cg(p[f[2]]));
+    if (CGAL::do_intersect(tet, tri)) out[i].push_back(j);
+  }
+  for (auto& l : out) std::sort(l.begin(), l.end());
+  return out;
+}
+
+} // namespace curvetet::volume

@@ -1,0 +1,26 @@
+#pragma once
+// Background mesh of the volume stage (paper §4.3 step 2): the Delaunay
+// tetrahedralization of the offset vertices plus the corners of a box, and
+// which offset triangles meet which tets (closed sets, exact).
+#include "curvetet/mesh/surface_mesh.hpp"
+
+#include <array>
+#include <vector>
+
+namespace curvetet::volume {
+
+struct BackgroundMesh {
+  std::vector<mesh::Vec3> points;            // as given
+  std::vector<std::array<int, 4>> tets;      // positive (orient3d > 0)
+};
+
+// Delaunay tetrahedralization of `points` (CGAL, exact predicates). Points
+// must be pairwise distinct and not all coplanar; throws Error(internal)
+// otherwise.
+BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points);
+
+// For every tet, the sorted ids of the triangles (corners index bg.points)
+// that meet the closed tet.
+std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles);
+
+} // namespace curvetet::volume

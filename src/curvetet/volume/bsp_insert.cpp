@@ -1,0 +1,518 @@
+#include "curvetet/volume/bsp_insert.hpp"
+
+#include "curvetet/core/error.hpp"
+#include "curvetet/core/log.hpp"
+#include "curvetet/mesh/edge_topology.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <unordered_map>
+
+namespace curvetet::volume::exact {
+namespace {
+
+constexpr double kUnit = std::numeric_limits<double>::epsilon() / 2;
+
+// Plane {x : n.(x - a) = 0}; a is a double point, n exact; n points to the
+// positive side.
+struct Plane {
+  Vec3 a;
+  mpq_class n[3];
+  Vec3 nd;      // n rounded toward zero
+  double nd_l1; // |nd|_1
+};
+
+Plane make_plane(const Vec3& a, const mpq_class n[3]) {
+  Plane p;
+  p.a = a;
+  for (int i = 0; i < 3; ++i) {
+    p.n[i] = n[i];
+    p.nd[i] = n[i].get_d();
+  }
+  p.nd_l1 = p.nd.cwiseAbs().sum();
+  return p;
+}
+
+void cross(const mpq_class u[3], const mpq_class v[3], mpq_class out[3]) {
+  out[0] = u[1] * v[2] - u[2] * v[1];
+  out[1] = u[2] * v[0] - u[0] * v[2];
+  out[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
+
+struct Face {
+  std::vector<int> loop; // cyclic, convex, unoriented
+  int cell[2] = {-1, -1};
+  int tri = -1;          // surface triangle containing the face, or -1
+};
+
+class Complex {
+ public:
+  Vertices v;
+  std::vector<Face> faces;
+  std::vector<std::vector<int>> cells; // face ids of each cell
+  std::vector<std::vector<int>> tet_cells;
+  std::size_t num_cuts = 0;
+
+  explicit Complex(const BackgroundMesh& bg) {
+    for (const auto& p : bg.points) v.add(p);
+    std::unordered_map<std::uint64_t, int> face_of; // sorted triple -> face
+    auto tri_key = [](int a, int b, int c) {
+      int s[3] = {a, b, c};
+      std::sort(s, s + 3);
+      return (static_cast<std::uint64_t>(s[0]) << 42) | (static_cast<std::uint64_t>(s[1]) << 21) |
+             static_cast<std::uint64_t>(s[2]);
+    };
+    const int nt = static_cast<int>(bg.tets.size());
+    cells.resize(nt);
+    tet_cells.resize(nt);
+    for (int t = 0; t < nt; ++t) {
+      const auto& q = bg.tets[t];
+      tet_cells[t] = {t};
+      for (int k = 0; k < 4; ++k) {
+        const int a = q[(k + 1) % 4], b = q[(k + 2) % 4], c = q[(k + 3) % 4];
+        auto [it, fresh] = face_of.try_emplace(tri_key(a, b, c), static_cast<int>(faces.size()));
+        if (fresh) {
+          faces.push_back(Face{{a, b, c}, {t, -1}, -1});
+          add_edges(it->second);
+        } else {
+          faces[it->second].cell[1] = t;
+        }
+        cells[t].push_back(it->second);
+      }
+    }
+  }
+
+  // Exact side of vertex i (double filter first).
+  int side(const Plane& p, int i) const {
+    const Vec3& x = v.d[i];
+    const double s = p.nd.dot(x - p.a);
+    const double m = std::max(x.cwiseAbs().maxCoeff(), p.a.cwiseAbs().maxCoeff());
+    const double bound = 128 * kUnit * p.nd_l1 * m;
+    if (s > bound) return 1;
+    if (s < -bound) return -1;
+    return sgn(value(p, i));
+  }
+  mpq_class value(const Plane& p, int i) const {
+    const QPoint& q = v.q[i];
+    return p.n[0] * (q.c[0] - p.a[0]) + p.n[1] * (q.c[1] - p.a[1]) + p.n[2] * (q.c[2] - p.a[2]);
+  }
+
+  // Vertices of cell c (each once).
+  std::vector<int> cell_vertices(int c) {
+    ++stamp_;
+    std::vector<int> out;
+    for (int f : cells[c])
+      for (int i : faces[f].loop) {
+        touch(i);
+        if (mark_[i] != stamp_) {
+          mark_[i] = stamp_;
+          out.push_back(i);
+        }
+      }
+    return out;
+  }
+
+  // Cuts cell c by plane p (the new cell goes to tet_cells[tet]); returns
+  // whether it was split.
+  bool cut(int c, const Plane& p, int tet) {
+    std::vector<int> verts = cell_vertices(c);
+    bool pos = false, neg = false;
+    for (int i : verts) {
+      const int s = side(p, i);
+      sgn_[i] = static_cast<signed char>(s);
+      pos |= s > 0;
+      neg |= s < 0;
+    }
+    if (!pos || !neg) return false;
+    ++num_cuts;
+    // 1. Split the crossing edges everywhere they appear.
+    std::vector<std::uint64_t> crossing;
+    for (int f : cells[c]) {
+      const auto& l = faces[f].loop;
+      for (std::size_t k = 0; k < l.size(); ++k) {
+        const int a = l[k], b = l[(k + 1) % l.size()];
+        if (sgn_[a] * sgn_[b] < 0) crossing.push_back(edge_key(a, b));
+      }
+    }
+    std::sort(crossing.begin(), crossing.end());
+    crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
+    for (auto key : crossing) {
+      const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+      const mpq_class va = value(p, a), vb = value(p, b);
+      const mpq_class t = va / (va - vb);
+      QPoint w;
+      for (int i = 0; i < 3; ++i) w.c[i] = v.q[a].c[i] + t * (v.q[b].c[i] - v.q[a].c[i]);
+      const int wi = v.add(w);
+      touch(wi);
+      sgn_[wi] = 0;
+      split_edge(a, b, wi);
+    }
+    // 2. Split the faces crossing the plane; collect the section's edges.
+    std::vector<int> plus, minus;
+    std::vector<std::uint64_t> section;
+    const std::vector<int> cell_faces = cells[c];
+    for (int f : cell_faces) {
+      bool fp = false, fn = false;
+      for (int i : faces[f].loop) {
+        fp |= sgn_[i] > 0;
+        fn |= sgn_[i] < 0;
+      }
+      if (fp && fn) {
+        auto [g, a, b, f_is_plus] = split_face(f);
+        (f_is_plus ? plus : minus).push_back(f);
+        (f_is_plus ? minus : plus).push_back(g);
+        section.push_back(edge_key(a, b));
+      } else if (fp || fn) {
+        (fp ? plus : minus).push_back(f);
+        const auto& l = faces[f].loop;
+        for (std::size_t k = 0; k < l.size(); ++k) {
+          const int a = l[k], b = l[(k + 1) % l.size()];
+          if (sgn_[a] == 0 && sgn_[b] == 0) section.push_back(edge_key(a, b));
+        }
+      } else {
+        throw Error(ExitCode::internal, "volume: BSP cut met a face lying in the cutting plane");
+      }
+    }
+    std::sort(section.begin(), section.end());
+    section.erase(std::unique(section.begin(), section.end()), section.end());
+    // 3. Chain the section edges into the new face's loop.
+    std::unordered_map<int, std::array<int, 2>> nb;
+    for (auto key : section) {
+      const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+      for (auto [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
+        auto [it, fresh] = nb.try_emplace(x, std::array<int, 2>{y, -1});
+        if (!fresh) it->second[1] = y;
+      }
+    }
+    std::vector<int> loop;
+    {
+      int prev = -1, cur = static_cast<int>(section[0] >> 32);
+      const int start = cur;
+      do {
+        loop.push_back(cur);
+        const auto& n = nb.at(cur);
+        const int next = n[0] != prev ? n[0] : n[1];
+        if (next < 0) {
+          std::string msg = "volume: BSP section is not a closed polygon:";
+          for (auto key : section) msg += " " + std::to_string(key >> 32) + "-" + std::to_string(key & 0xffffffffu);
+          for (int f : cell_faces) {
+            msg += "\n face " + std::to_string(f) + ":";
+            for (int i : faces[f].loop) msg += " " + std::to_string(i) + "(" + std::to_string(int(sgn_[i])) + ")";
+          }
+          throw Error(ExitCode::internal, msg);
+        }
+        prev = cur;
+        cur = next;
+      } while (cur != start && loop.size() <= section.size());
+      if (loop.size() != section.size() || loop.size() < 3)
+        throw Error(ExitCode::internal, "volume: BSP section is not a simple polygon");
+    }
+    // 4. Two cells: c keeps the positive side, cm gets the negative one.
+    const int cm = static_cast<int>(cells.size());
+    const int nf = static_cast<int>(faces.size());
+    for (int f : minus)
+      for (int& x : faces[f].cell)
+        if (x == c) x = cm;
+    faces.push_back(Face{std::move(loop), {c, cm}, -1});
+    add_edges(nf);
+    plus.push_back(nf);
+    minus.push_back(nf);
+    cells[c] = std::move(plus);
+    cells.push_back(std::move(minus));
+    tet_cells[tet].push_back(cm);
+#ifdef CURVETET_BSP_DEBUG
+    for (int cc : {c, cm, nf}) (void)cc;
+    for (int cc = 0; cc < (int)cells.size(); ++cc) {
+      auto l = cells[cc];
+      std::sort(l.begin(), l.end());
+      if (std::adjacent_find(l.begin(), l.end()) != l.end()) throw Error(ExitCode::internal, "dup face in cell " + std::to_string(cc) + " after cutting " + std::to_string(c));
+      for (int f : l) if (faces[f].cell[0] != cc && faces[f].cell[1] != cc) throw Error(ExitCode::internal, "face/cell mismatch");
+    }
+#endif
+    return true;
+  }
+
+ private:
+  std::vector<signed char> sgn_;
+  std::vector<unsigned> mark_;
+  unsigned stamp_ = 0;
+  std::unordered_map<std::uint64_t, std::vector<int>> edge_faces_;
+
+  void touch(int i) {
+    if (static_cast<int>(mark_.size()) <= i) {
+      mark_.resize(2 * i + 16, 0);
+      sgn_.resize(2 * i + 16, 0);
+    }
+  }
+  void add_edges(int f) {
+    const auto& l = faces[f].loop;
+    for (std::size_t k = 0; k < l.size(); ++k) edge_faces_[edge_key(l[k], l[(k + 1) % l.size()])].push_back(f);
+  }
+  // Inserts w between a and b in every face having edge ab.
+  void split_edge(int a, int b, int w) {
+    auto node = edge_faces_.extract(edge_key(a, b));
+    if (node.empty()) throw Error(ExitCode::internal, "volume: BSP edge without faces");
+    std::vector<int> fs = std::move(node.mapped());
+    for (int f : fs) {
+      auto& l = faces[f].loop;
+      const std::size_t n = l.size();
+      for (std::size_t k = 0; k < n; ++k) {
+        const int x = l[k], y = l[(k + 1) % n];
+        if ((x == a && y == b) || (x == b && y == a)) {
+          l.insert(l.begin() + static_cast<std::ptrdiff_t>(k + 1), w);
+          break;
+        }
+      }
+    }
+    edge_faces_[edge_key(a, w)] = fs;
+    edge_faces_[edge_key(w, b)] = std::move(fs);
+  }
+  // Splits face f (vertices on both sides, two on the plane) into f and a new
+  // face g; both keep f's cells. Returns g, the chord ends, and whether f
+  // kept the positive side.
+  std::tuple<int, int, int, bool> split_face(int f) {
+    std::vector<int> l = faces[f].loop;
+    const std::size_t n = l.size();
+    std::size_t z0 = n, z1 = n;
+    for (std::size_t k = 0; k < n; ++k)
+      if (sgn_[l[k]] == 0) (z0 == n ? z0 : z1) = k;
+    if (z1 == n) throw Error(ExitCode::internal, "volume: BSP face split without two plane points");
+    std::vector<int> first(l.begin() + z0, l.begin() + z1 + 1);
+    std::vector<int> second(l.begin() + z1, l.end());
+    second.insert(second.end(), l.begin(), l.begin() + z0 + 1);
+    const bool first_plus = sgn_[first[1]] > 0;
+    const int a = l[z0], b = l[z1];
+    const int g = static_cast<int>(faces.size());
+    faces.push_back(Face{second, {faces[f].cell[0], faces[f].cell[1]}, -1});
+    faces[f].loop = std::move(first);
+    // Edges of g (except the chord) now belong to g instead of f.
+    for (std::size_t k = 0; k + 1 < second.size(); ++k) {
+      auto& list = edge_faces_[edge_key(second[k], second[k + 1])];
+      std::replace(list.begin(), list.end(), f, g);
+    }
+    edge_faces_[edge_key(a, b)] = {f, g};
+    for (int x : faces[f].cell)
+      if (x >= 0 && x != -1) {
+        // every cell having f also has g (the cut cell's lists are rebuilt by the caller)
+        cells[x].push_back(g);
+      }
+    return {g, a, b, first_plus};
+  }
+};
+
+} // namespace
+
+InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles, int keep_winding) {
+  Complex cx(bg);
+  const int nt = static_cast<int>(triangles.size());
+  const auto& P = bg.points;
+
+  // Planes of the triangles (normal = outward face normal) and, for edges
+  // whose two triangles are coplanar, a plane through the edge.
+  std::vector<Plane> tri_plane(nt);
+  std::vector<std::vector<Plane>> edge_planes(nt);
+  {
+    for (int t = 0; t < nt; ++t) {
+      const auto& f = triangles[t];
+      mpq_class u[3], w[3], n[3];
+      for (int i = 0; i < 3; ++i) {
+        u[i] = mpq_class(P[f[1]][i]) - P[f[0]][i];
+        w[i] = mpq_class(P[f[2]][i]) - P[f[0]][i];
+      }
+      cross(u, w, n);
+      tri_plane[t] = make_plane(P[f[0]], n);
+    }
+    auto topo = mesh::build_edge_topology(triangles);
+    for (int e = 0; e < topo.num_edges(); ++e) {
+      if (topo.num_faces_of(e) != 2) throw Error(ExitCode::internal, "volume: offset surface is not closed manifold");
+      const int f0 = topo.faces_of(e)[0], f1 = topo.faces_of(e)[1];
+      const int a = topo.edges[e][0], b = topo.edges[e][1];
+      int c1 = -1;
+      for (int k : triangles[f1])
+        if (k != a && k != b) c1 = k;
+      if (cx.side(tri_plane[f0], c1) != 0) continue;
+      // coplanar neighbours: cut along the edge by the plane containing it
+      // and the common normal.
+      mpq_class u[3], m[3];
+      for (int i = 0; i < 3; ++i) u[i] = mpq_class(P[b][i]) - P[a][i];
+      cross(u, tri_plane[f0].n, m);
+      Plane ep = make_plane(P[a], m);
+      edge_planes[f0].push_back(ep);
+      edge_planes[f1].push_back(ep);
+    }
+  }
+
+  // Cut every tet's cells by the planes of the triangles meeting them. A cell
+  // whose (slightly grown) box misses the triangle's box cannot meet the
+  // triangle and is skipped; cutting more cells than needed is harmless.
+  const auto tet_tris = triangles_meeting_tets(bg, triangles);
+  const int ntet = static_cast<int>(bg.tets.size());
+  std::vector<Eigen::AlignedBox3d> tri_box(nt);
+  for (int t = 0; t < nt; ++t) {
+    for (int k : triangles[t]) tri_box[t].extend(P[k]);
+    const double pad = 1e-9 * (tri_box[t].max().cwiseAbs().maxCoeff() + tri_box[t].min().cwiseAbs().maxCoeff());
+    tri_box[t].min().array() -= pad;
+    tri_box[t].max().array() += pad;
+  }
+  for (int T = 0; T < ntet; ++T) {
+    for (int t : tet_tris[T]) {
+      auto apply = [&](const Plane& p) {
+        const std::size_t count = cx.tet_cells[T].size();
+        for (std::size_t k = 0; k < count; ++k) {
+          const int c = cx.tet_cells[T][k];
+          if (count > 1) {
+            Eigen::AlignedBox3d box;
+            for (int i : cx.cell_vertices(c)) box.extend(cx.v.d[i]);
+            const double pad = 1e-9 * (box.max().cwiseAbs().maxCoeff() + box.min().cwiseAbs().maxCoeff());
+            box.min().array() -= pad;
+            box.max().array() += pad;
+            if (!box.intersects(tri_box[t])) continue;
+          }
+          cx.cut(c, p, T);
+        }
+      };
+      apply(tri_plane[t]);
+      for (const auto& ep : edge_planes[t]) apply(ep);
+    }
+  }
+
+  // Faces lying in a surface triangle.
+  std::vector<char> checked(cx.faces.size(), 0);
+  for (int T = 0; T < ntet; ++T) {
+    if (tet_tris[T].empty()) continue;
+    for (int c : cx.tet_cells[T])
+      for (int f : cx.cells[c]) {
+        if (checked[f]) continue;
+        checked[f] = 1;
+        const auto& loop = cx.faces[f].loop;
+        for (int t : tet_tris[T]) {
+          const Plane& pl = tri_plane[t];
+          bool in_plane = true;
+          for (int i : loop)
+            if (cx.side(pl, i) != 0) {
+              in_plane = false;
+              break;
+            }
+          if (!in_plane) continue;
+          // centroid inside the closed triangle?
+          QPoint g;
+          for (int i : loop)
+            for (int k = 0; k < 3; ++k) g.c[k] += cx.v.q[i].c[k];
+          for (int k = 0; k < 3; ++k) g.c[k] /= static_cast<long>(loop.size());
+          bool inside = true;
+          const auto& tri = triangles[t];
+          for (int e = 0; e < 3 && inside; ++e) {
+            const Vec3& x = P[tri[e]];
+            const Vec3& y = P[tri[(e + 1) % 3]];
+            mpq_class d[3], r[3], cr[3];
+            for (int k = 0; k < 3; ++k) {
+              d[k] = mpq_class(y[k]) - x[k];
+              r[k] = g.c[k] - x[k];
+            }
+            cross(d, r, cr);
+            mpq_class dot = cr[0] * pl.n[0] + cr[1] * pl.n[1] + cr[2] * pl.n[2];
+            if (sgn(dot) < 0) inside = false;
+          }
+          if (inside) {
+            cx.faces[f].tri = t;
+            break;
+          }
+        }
+      }
+  }
+
+  // Winding numbers by crossing surface faces, from the hull (winding 0).
+  const int ncell = static_cast<int>(cx.cells.size());
+  constexpr int kUnset = std::numeric_limits<int>::min();
+  std::vector<int> winding(ncell, kUnset);
+  std::deque<int> queue;
+  auto side_of_cell = [&](int c, const Plane& pl) {
+    for (int f : cx.cells[c])
+      for (int i : cx.faces[f].loop) {
+        const int s = cx.side(pl, i);
+        if (s != 0) return s;
+      }
+    throw Error(ExitCode::internal, "volume: flat BSP cell");
+  };
+  // Outside the hull the winding is 0; a hull face may lie on the surface.
+  for (const auto& f : cx.faces)
+    if (f.cell[1] < 0 && winding[f.cell[0]] == kUnset) {
+      const int c = f.cell[0];
+      winding[c] = f.tri < 0 ? 0 : (side_of_cell(c, tri_plane[f.tri]) < 0 ? 1 : -1);
+      queue.push_back(c);
+    }
+  while (!queue.empty()) {
+    const int c = queue.front();
+    queue.pop_front();
+    for (int f : cx.cells[c]) {
+      const Face& face = cx.faces[f];
+      const int o = face.cell[0] == c ? face.cell[1] : face.cell[0];
+      if (o < 0) continue;
+      int w = winding[c];
+      if (face.tri >= 0) w += side_of_cell(c, tri_plane[face.tri]) > 0 ? 1 : -1;
+      if (winding[o] == kUnset) {
+        winding[o] = w;
+        queue.push_back(o);
+      } else if (winding[o] != w) {
+        throw Error(ExitCode::internal, "volume: inconsistent winding numbers (surface not closed?)");
+      }
+    }
+  }
+
+  // Tetrahedralize the kept cells; fans on faces are shared.
+  InsertedSurface out;
+  out.num_cuts = cx.num_cuts;
+  out.num_cells = cx.cells.size();
+  out.refined.resize(nt);
+  std::vector<int> face_center(cx.faces.size(), -2);
+  auto centroid = [&](const std::vector<int>& ids) {
+    QPoint g;
+    for (int i : ids)
+      for (int k = 0; k < 3; ++k) g.c[k] += cx.v.q[i].c[k];
+    for (int k = 0; k < 3; ++k) g.c[k] /= static_cast<long>(ids.size());
+    return g;
+  };
+  auto face_triangles = [&](int f, std::vector<std::array<int, 3>>& tris) {
+    const auto& l = cx.faces[f].loop;
+    if (l.size() == 3) {
+      tris.push_back({l[0], l[1], l[2]});
+      return;
+    }
+    if (face_center[f] == -2) face_center[f] = cx.v.add(centroid(l));
+    for (std::size_t k = 0; k < l.size(); ++k) tris.push_back({face_center[f], l[k], l[(k + 1) % l.size()]});
+  };
+  auto add_tet = [&](std::array<int, 4> t) {
+    const int o = cx.v.orient(t[0], t[1], t[2], t[3]);
+    if (o == 0) throw Error(ExitCode::internal, "volume: flat tet in a BSP cell");
+    if (o < 0) std::swap(t[0], t[1]);
+    out.tets.push_back(t);
+  };
+  for (int c = 0; c < ncell; ++c) {
+    if (winding[c] == kUnset) throw Error(ExitCode::internal, "volume: BSP cell not reached");
+    if (winding[c] != keep_winding) continue;
+    std::vector<std::array<int, 3>> tris;
+    for (int f : cx.cells[c]) face_triangles(f, tris);
+    if (cx.cells[c].size() == 4 && tris.size() == 4) {
+      std::vector<int> vs = cx.cell_vertices(c);
+      add_tet({vs[0], vs[1], vs[2], vs[3]});
+      continue;
+    }
+    const int g = cx.v.add(centroid(cx.cell_vertices(c)));
+    for (const auto& t : tris) add_tet({t[0], t[1], t[2], g});
+  }
+  for (int f = 0; f < static_cast<int>(cx.faces.size()); ++f)
+    if (cx.faces[f].tri >= 0) face_triangles(f, out.refined[cx.faces[f].tri]);
+  out.vertices = std::move(cx.v);
+  return out;
+}
+
+} // namespace curvetet::volume::exact

@@ -1,0 +1,162 @@
+#include "curvetet/volume/fill.hpp"
+
+#include "curvetet/core/error.hpp"
+#include "curvetet/core/log.hpp"
+#include "curvetet/volume/background.hpp"
+#include "curvetet/volume/bsp_insert.hpp"
+#include "curvetet/volume/optimize.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <unordered_map>
+
+namespace curvetet::volume {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Vertices of `tris` strictly inside segment xy, ordered from x to y.
+std::vector<int> chain_on_segment(const exact::Vertices& v, int x, int y,
+                                  const std::vector<std::array<int, 3>>& tris) {
+  std::vector<int> cand;
+  for (const auto& t : tris)
+    for (int i : t)
+      if (i != x && i != y) cand.push_back(i);
+  std::sort(cand.begin(), cand.end());
+  cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+  mpq_class d[3];
+  for (int k = 0; k < 3; ++k) d[k] = v.q[y].c[k] - v.q[x].c[k];
+  const mpq_class dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  std::vector<std::pair<mpq_class, int>> on;
+  for (int i : cand) {
+    mpq_class r[3];
+    for (int k = 0; k < 3; ++k) r[k] = v.q[i].c[k] - v.q[x].c[k];
+    if (d[1] * r[2] != d[2] * r[1] || d[2] * r[0] != d[0] * r[2] || d[0] * r[1] != d[1] * r[0]) continue;
+    mpq_class t = d[0] * r[0] + d[1] * r[1] + d[2] * r[2];
+    if (sgn(t) > 0 && t < dd) on.emplace_back(t, i);
+  }
+  std::sort(on.begin(), on.end());
+  std::vector<int> out{x};
+  for (auto& p : on) out.push_back(p.second);
+  out.push_back(y);
+  return out;
+}
+
+} // namespace
+
+mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& options, FillStats* stats_out) {
+  FillStats stats;
+  const int n = s.surface.num_vertices();
+  const auto& faces = s.surface.faces;
+  auto t0 = std::chrono::steady_clock::now();
+
+  std::vector<int> layer_face;
+  const auto layer = layer_tets(s, &layer_face);
+
+  // Background: offset vertices (id v = offset of v) + box corners.
+  BackgroundMesh bg;
+  std::vector<mesh::Vec3> pts = s.offset;
+  Eigen::Vector3d lo = pts[0], hi = pts[0];
+  for (const auto& p : pts) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  for (const auto& p : s.surface.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double margin = std::max(options.box_margin, 1e-3) * (hi - lo).norm();
+  lo.array() -= margin;
+  hi.array() += margin;
+  // The inside needs no box: the offset surface lies in its vertices' hull.
+  const bool inward = s.side == OffsetSide::inward;
+  if (!inward)
+    for (int c = 0; c < 8; ++c)
+      pts.emplace_back(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
+  bg = delaunay(pts);
+  stats.background_tets = bg.tets.size();
+
+  auto ins = exact::insert_surface(bg, faces, inward ? 1 : 0);
+  stats.bsp_cuts = ins.num_cuts;
+  stats.bsp_cells = ins.num_cells;
+  stats.seconds_insert = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+
+  // Output ids: surface vertices first; complex vertices on demand.
+  exact::ExactTetMesh m;
+  for (const auto& p : s.surface.vertices) m.v.add(p);
+  std::vector<int> id_of(ins.vertices.size(), -1);
+  for (int v = 0; v < n; ++v)
+    if (s.pinched(v)) id_of[v] = v;
+  auto id = [&](int c) {
+    if (id_of[c] < 0) {
+      id_of[c] = ins.vertices.exact[c] ? m.v.add(ins.vertices.d[c]) : m.v.add(ins.vertices.q[c]);
+    }
+    return id_of[c];
+  };
+  auto add_tet = [&](std::array<int, 4> t) {
+    const int o = m.v.orient(t[0], t[1], t[2], t[3]);
+    if (o == 0) throw Error(ExitCode::internal, "volume: flat tet while filling the layer");
+    if (o < 0) std::swap(t[0], t[1]);
+    m.tets.push_back(t);
+  };
+  for (const auto& t : ins.tets) m.tets.push_back({id(t[0]), id(t[1]), id(t[2]), id(t[3])});
+
+  // Layer: layer ids (v < n surface, n + v offset of v) -> complex ids.
+  auto complex_of_layer = [&](int l) { return l < n ? l : l - n; }; // only for offset ends
+  std::unordered_map<std::uint64_t, std::vector<int>> chains; // complex edge -> chain (complex ids)
+  auto chain = [&](int f, int cx, int cy) -> const std::vector<int>& {
+    const std::uint64_t key =
+        (static_cast<std::uint64_t>(std::min(cx, cy)) << 32) | static_cast<std::uint32_t>(std::max(cx, cy));
+    auto it = chains.find(key);
+    if (it == chains.end())
+      it = chains.emplace(key, chain_on_segment(ins.vertices, std::min(cx, cy), std::max(cx, cy), ins.refined[f])).first;
+    return it->second;
+  };
+  for (std::size_t k = 0; k < layer.size(); ++k) {
+    const auto& t = layer[k];
+    const int f = layer_face[k];
+    std::array<int, 3> E;
+    for (int i = 0; i < 3; ++i) E[i] = offset_id(s, faces[f][i]);
+    std::vector<int> on, off;
+    for (int x : t) (std::find(E.begin(), E.end(), x) != E.end() ? on : off).push_back(x);
+    auto out_id = [&](int l) { return l < n ? l : id(l - n); };
+    if (on.size() == 3) {
+      const int apex = out_id(off[0]);
+      for (const auto& tri : ins.refined[f]) add_tet({id(tri[0]), id(tri[1]), id(tri[2]), apex});
+    } else if (on.size() == 2) {
+      const auto& c = chain(f, complex_of_layer(on[0]), complex_of_layer(on[1]));
+      for (std::size_t i = 0; i + 1 < c.size(); ++i) add_tet({out_id(off[0]), out_id(off[1]), id(c[i]), id(c[i + 1])});
+    } else {
+      std::array<int, 4> o;
+      for (int i = 0; i < 4; ++i) o[i] = out_id(t[i]);
+      add_tet(o);
+    }
+  }
+  stats.seconds_layer = seconds_since(t0);
+
+  // Frozen: the surface, and vertices on the box boundary.
+  m.frozen.assign(m.v.size(), 0);
+  for (int v = 0; v < n; ++v) m.frozen[v] = 1;
+  for (int v = n; v < m.v.size() && !inward; ++v)
+    for (int k = 0; k < 3; ++k)
+      if (m.v.q[v].c[k] == lo[k] || m.v.q[v].c[k] == hi[k]) m.frozen[v] = 1;
+  stats.exact_tets = m.tets.size();
+  stats.exact_vertices = m.v.size();
+  for (char e : m.v.exact) stats.rational_vertices += !e;
+  logger().debug("volume: {} background tets, {} cuts, {} cells, {} exact tets ({} rational of {} vertices)",
+                 stats.background_tets, stats.bsp_cuts, stats.bsp_cells, stats.exact_tets, stats.rational_vertices,
+                 stats.exact_vertices);
+
+  t0 = std::chrono::steady_clock::now();
+  auto out = exact::round_and_optimize(std::move(m), n, options, stats);
+  stats.seconds_optimize = seconds_since(t0);
+  const int tag = inward ? 1 : 2;
+  out.tags.assign(out.tets.size(), tag);
+  if (stats_out) *stats_out = stats;
+  return out;
+}
+
+} // namespace curvetet::volume

@@ -1,0 +1,46 @@
+#pragma once
+// Boundary-preserving tetrahedralization (paper §4.3; DESIGN.md §5).
+//
+// fill_layered() fills the region behind (side inward: the solid) or in front
+// of (side outward: between the surface and a box) a closed surface whose
+// offset is given, without any Steiner point on the surface:
+//   2. Delaunay of the offset vertices + 8 box corners, exact BSP insertion of
+//      the offset triangles (rational coordinates), keep the cells on the
+//      wanted side of the offset surface (winding number);
+//   3-4. fill every layer prism surface→offset with its 3 tets, refining the
+//      tets that touch a refined offset face or edge so everything conforms;
+//   5. round vertices to doubles where every incident tet stays positive, and
+//      optimize AMIPS energy (smooth, collapse, flip) with the surface and box
+//      frozen; unrounded vertices are removed or moved until none is left.
+// Output contract (verified exactly by verify_fill, volume/verify.hpp):
+// vertices [0, n) are the surface vertices, bit for bit; every tet is positive
+// by exact orient3d on the output doubles; the boundary faces are exactly the
+// surface faces (inward: same orientation; outward: reversed) plus, outward,
+// the box; every other face has exactly two tets.
+// Throws Error(internal) if the offset breaks LayeredSurface's contract or a
+// vertex cannot be rounded (never seen; it would be a bug).
+#include "curvetet/mesh/linear_tet_mesh.hpp"
+#include "curvetet/volume/layered_surface.hpp"
+
+#include <cstddef>
+#include <string>
+
+namespace curvetet::volume {
+
+struct FillOptions {
+  double box_margin = 0.1; // outward: the box grows the bbox by this × diagonal on each side
+  int optimize_rounds = 4; // AMIPS rounds (0: rounding only)
+};
+
+struct FillStats {
+  std::size_t background_tets = 0, bsp_cuts = 0, bsp_cells = 0;
+  std::size_t exact_tets = 0, exact_vertices = 0, rational_vertices = 0;
+  std::size_t unrounded_after_first_pass = 0;
+  std::size_t collapses = 0, smooths = 0, flips = 0;
+  double seconds_insert = 0, seconds_layer = 0, seconds_optimize = 0;
+  double max_amips = 0, mean_amips = 0;
+};
+
+mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& options = {}, FillStats* stats = nullptr);
+
+} // namespace curvetet::volume

@@ -1,0 +1,464 @@
+#include "curvetet/volume/optimize.hpp"
+
+#include "curvetet/core/error.hpp"
+#include "curvetet/core/log.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <numeric>
+
+namespace curvetet::volume::exact {
+
+double amips(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  // J = E W^{-1}, W the regular tet's edge matrix with unit edges.
+  static const Eigen::Matrix3d w_inv = [] {
+    Eigen::Matrix3d w;
+    w << 1, 0.5, 0.5, 0, std::sqrt(3.0) / 2, std::sqrt(3.0) / 6, 0, 0, std::sqrt(2.0 / 3.0);
+    return Eigen::Matrix3d(w.inverse());
+  }();
+  Eigen::Matrix3d e;
+  e.col(0) = b - a;
+  e.col(1) = c - a;
+  e.col(2) = d - a;
+  const Eigen::Matrix3d j = e * w_inv;
+  const double det = j.determinant();
+  if (!(det > 0)) return std::numeric_limits<double>::infinity();
+  return j.squaredNorm() / (3 * std::cbrt(det * det));
+}
+
+namespace {
+
+using Tet = std::array<int, 4>;
+
+class Optimizer {
+ public:
+  Optimizer(ExactTetMesh&& m, FillStats& stats) : m_(std::move(m)), stats_(stats) {
+    vt_.resize(m_.v.size());
+    for (int t = 0; t < static_cast<int>(m_.tets.size()); ++t)
+      for (int x : m_.tets[t]) vt_[x].push_back(t);
+    alive_.assign(m_.tets.size(), 1);
+  }
+
+  ExactTetMesh& mesh() { return m_; }
+  bool alive(int t) const { return alive_[t]; }
+
+  double energy(const Tet& t) const {
+    const auto& d = m_.v.d;
+    return amips(d[t[0]], d[t[1]], d[t[2]], d[t[3]]);
+  }
+  double energy_at(const Tet& t, int v, const Vec3& p) const {
+    const Vec3* x[4];
+    for (int k = 0; k < 4; ++k) x[k] = t[k] == v ? &p : &m_.v.d[t[k]];
+    return amips(*x[0], *x[1], *x[2], *x[3]);
+  }
+
+  // Rounds every rational vertex whose star stays positive; returns how many
+  // are still rational.
+  std::size_t round_pass() {
+    std::size_t left = 0;
+    for (int v = 0; v < m_.v.size(); ++v) {
+      if (m_.v.exact[v] || vt_[v].empty()) continue;
+      const Vec3 p = nearest_double(m_.v.q[v]);
+      if (star_positive_at(v, p)) {
+        m_.v.set(v, p);
+      } else {
+        ++left;
+      }
+    }
+    return left;
+  }
+
+  std::size_t count_rational() const {
+    std::size_t n = 0;
+    for (int v = 0; v < m_.v.size(); ++v) n += !m_.v.exact[v] && !vt_[v].empty();
+    return n;
+  }
+
+  bool star_positive_at(int v, const Vec3& p) const {
+    for (int t : vt_[v])
+      if (m_.v.orient_at(m_.tets[t], v, p) <= 0) return false;
+    return true;
+  }
+
+  // --- smoothing: descend the star's AMIPS sum, keep every tet positive. ---
+  bool smooth(int v) {
+    if (m_.frozen[v] || vt_[v].empty()) return false;
+    const Vec3 p0 = m_.v.d[v];
+    double e0 = 0, max0 = 0, len = 0;
+    for (int t : vt_[v]) {
+      const double e = energy(m_.tets[t]);
+      e0 += e;
+      max0 = std::max(max0, e);
+      for (int x : m_.tets[t]) len += (m_.v.d[x] - p0).norm();
+    }
+    len /= 3.0 * static_cast<double>(vt_[v].size());
+    if (!(len > 0)) return false;
+    auto sum_at = [&](const Vec3& p, double* mx) {
+      double s = 0, m = 0;
+      for (int t : vt_[v]) {
+        const double e = energy_at(m_.tets[t], v, p);
+        s += e;
+        m = std::max(m, e);
+      }
+      if (mx) *mx = m;
+      return s;
+    };
+    const double h = 1e-5 * len;
+    Vec3 g;
+    for (int k = 0; k < 3; ++k) {
+      Vec3 a = p0, b = p0;
+      a[k] += h;
+      b[k] -= h;
+      g[k] = (sum_at(a, nullptr) - sum_at(b, nullptr)) / (2 * h);
+    }
+    if (!g.allFinite() || g.norm() == 0) return false;
+    const Vec3 dir = -g.normalized();
+    for (double step = 0.25 * len; step > 1e-4 * len; step *= 0.5) {
+      const Vec3 p = p0 + step * dir;
+      double mx;
+      const double s = sum_at(p, &mx);
+      if (!(s < e0) || !(mx <= max0)) continue;
+      if (!star_positive_at(v, p)) continue;
+      m_.v.set(v, p);
+      ++stats_.smooths;
+      return true;
+    }
+    return false;
+  }
+
+  // Moves an unrounded vertex to some double position keeping its star
+  // positive (towards the star's centroid).
+  bool relocate(int v) {
+    if (m_.frozen[v] || m_.v.exact[v]) return false;
+    Vec3 c = Vec3::Zero();
+    int n = 0;
+    for (int t : vt_[v])
+      for (int x : m_.tets[t])
+        if (x != v) {
+          c += m_.v.d[x];
+          ++n;
+        }
+    c /= n;
+    const Vec3 p0 = m_.v.d[v];
+    for (double a : {1.0, 0.5, 0.25, 0.1, 0.01, 1e-3, 1e-5, 1e-8}) {
+      const Vec3 p = p0 + a * (c - p0);
+      if (star_positive_at(v, p)) {
+        m_.v.set(v, p);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // --- collapse v onto u ---
+  bool collapse(int v, int u, bool require_quality) {
+    if (m_.frozen[v] || u == v) return false;
+    // new tets and their energies
+    double old_max = 0, new_max = 0;
+    std::vector<int> removed;
+    for (int t : vt_[v]) {
+      const Tet& q = m_.tets[t];
+      old_max = std::max(old_max, energy(q));
+      if (std::find(q.begin(), q.end(), u) != q.end()) {
+        removed.push_back(t);
+        continue;
+      }
+      Tet n = q;
+      for (int& x : n)
+        if (x == v) x = u;
+      if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
+      new_max = std::max(new_max, energy(n));
+    }
+    if (removed.empty()) return false; // not an edge
+    if (require_quality && !(new_max <= old_max)) return false;
+    if (!link_condition(u, v)) return false;
+    for (int t : removed) kill(t);
+    for (int t : std::vector<int>(vt_[v])) {
+      for (int& x : m_.tets[t])
+        if (x == v) x = u;
+      vt_[u].push_back(t);
+    }
+    vt_[v].clear();
+    ++stats_.collapses;
+    return true;
+  }
+
+  // --- flips ---
+  // 3-2: interior edge (a, b) with exactly three tets around it.
+  bool flip_32(int a, int b) {
+    std::vector<int> ring;
+    for (int t : vt_[a]) {
+      const Tet& q = m_.tets[t];
+      if (std::find(q.begin(), q.end(), b) != q.end()) ring.push_back(t);
+    }
+    if (ring.size() != 3) return false;
+    std::vector<int> others;
+    for (int t : ring)
+      for (int x : m_.tets[t])
+        if (x != a && x != b) others.push_back(x);
+    std::sort(others.begin(), others.end());
+    // closed ring: three vertices, each twice
+    if (!(others.size() == 6 && others[0] == others[1] && others[2] == others[3] && others[4] == others[5] &&
+          others[1] != others[2] && others[3] != others[4]))
+      return false;
+    const int c = others[0], d = others[2], e = others[4];
+    if (face_exists(c, d, e)) return false;
+    double old_max = 0;
+    for (int t : ring) old_max = std::max(old_max, energy(m_.tets[t]));
+    // a and b must lie strictly on opposite sides of cde (then ab pierces it).
+    const int sa = m_.v.orient(c, d, e, a), sb = m_.v.orient(c, d, e, b);
+    if (sa == 0 || sb != -sa) return false;
+    Tet t1 = sa > 0 ? Tet{c, d, e, a} : Tet{d, c, e, a};
+    Tet t2 = sa > 0 ? Tet{d, c, e, b} : Tet{c, d, e, b};
+    if (!(std::max(energy(t1), energy(t2)) < old_max)) return false;
+    for (int t : ring) kill(t);
+    add(t1);
+    add(t2);
+    ++stats_.flips;
+    return true;
+  }
+
+  // 2-3: interior face of tet t opposite its corner k.
+  bool flip_23(int t, int k) {
+    const Tet q = m_.tets[t];
+    const int d = q[k];
+    std::array<int, 3> f;
+    for (int i = 0, j = 0; i < 4; ++i)
+      if (i != k) f[j++] = q[i];
+    // (f0, f1, f2, d) is q up to moving corner k last: parity 3 - k.
+    if ((3 - k) % 2 == 1) std::swap(f[0], f[1]);
+    int other = -1;
+    for (int s : vt_[f[0]]) {
+      if (s == t) continue;
+      const Tet& r = m_.tets[s];
+      if (std::find(r.begin(), r.end(), f[1]) != r.end() && std::find(r.begin(), r.end(), f[2]) != r.end()) {
+        other = s;
+        break;
+      }
+    }
+    if (other < 0) return false;
+    int e = -1;
+    for (int x : m_.tets[other])
+      if (x != f[0] && x != f[1] && x != f[2]) e = x;
+    if (edge_exists(d, e)) return false;
+    const double old_max = std::max(energy(q), energy(m_.tets[other]));
+    std::array<Tet, 3> nt;
+    double new_max = 0;
+    for (int i = 0; i < 3; ++i) {
+      nt[i] = {f[i], f[(i + 1) % 3], e, d}; // positive iff de pierces f
+      if (!orient_positive(nt[i])) return false;
+      new_max = std::max(new_max, energy(nt[i]));
+    }
+    if (!(new_max < old_max)) return false;
+    kill(t);
+    kill(other);
+    for (auto& x : nt) add(x);
+    ++stats_.flips;
+    return true;
+  }
+
+  std::vector<int> neighbours(int v) const {
+    std::vector<int> out;
+    for (int t : vt_[v])
+      for (int x : m_.tets[t])
+        if (x != v) out.push_back(x);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  int num_tets() const { return static_cast<int>(m_.tets.size()); }
+  const std::vector<int>& star(int v) const { return vt_[v]; }
+
+  mesh::LinearTetMesh extract(int num_keep) {
+    mesh::LinearTetMesh out;
+    std::vector<int> id(m_.v.size(), -1);
+    for (int v = 0; v < num_keep; ++v) id[v] = v;
+    int next = num_keep;
+    for (int t = 0; t < num_tets(); ++t)
+      if (alive_[t])
+        for (int x : m_.tets[t])
+          if (id[x] < 0) id[x] = next++;
+    out.vertices.resize(next);
+    for (int v = 0; v < m_.v.size(); ++v)
+      if (id[v] >= 0) {
+        if (!m_.v.exact[v]) throw Error(ExitCode::internal, "volume: a vertex could not be rounded to doubles");
+        out.vertices[id[v]] = m_.v.d[v];
+      }
+    for (int t = 0; t < num_tets(); ++t)
+      if (alive_[t]) {
+        const Tet& q = m_.tets[t];
+        out.tets.push_back({id[q[0]], id[q[1]], id[q[2]], id[q[3]]});
+      }
+    return out;
+  }
+
+ private:
+  ExactTetMesh m_;
+  FillStats& stats_;
+  std::vector<std::vector<int>> vt_;
+  std::vector<char> alive_;
+
+  bool orient_positive(Tet& t) const { return m_.v.orient(t[0], t[1], t[2], t[3]) > 0; }
+  void kill(int t) {
+    alive_[t] = 0;
+    for (int x : m_.tets[t]) {
+      auto& l = vt_[x];
+      l.erase(std::find(l.begin(), l.end(), t));
+    }
+  }
+  void add(const Tet& t) {
+    const int id = num_tets();
+    m_.tets.push_back(t);
+    alive_.push_back(1);
+    for (int x : t) vt_[x].push_back(id);
+  }
+  bool edge_exists(int a, int b) const {
+    for (int t : vt_[a]) {
+      const Tet& q = m_.tets[t];
+      if (std::find(q.begin(), q.end(), b) != q.end()) return true;
+    }
+    return false;
+  }
+  bool face_exists(int a, int b, int c) const {
+    for (int t : vt_[a]) {
+      const Tet& q = m_.tets[t];
+      if (std::find(q.begin(), q.end(), b) != q.end() && std::find(q.begin(), q.end(), c) != q.end()) return true;
+    }
+    return false;
+  }
+  // lk(u) ∩ lk(v) = lk(uv) (v interior, so no virtual boundary vertex).
+  bool link_condition(int u, int v) const {
+    auto link = [&](int x, std::vector<std::array<int, 3>>& tris, std::vector<std::array<int, 2>>& edges,
+                    std::vector<int>& verts) {
+      for (int t : vt_[x]) {
+        std::array<int, 3> f;
+        int j = 0;
+        for (int y : m_.tets[t])
+          if (y != x) f[j++] = y;
+        std::sort(f.begin(), f.end());
+        tris.push_back(f);
+        edges.push_back({f[0], f[1]});
+        edges.push_back({f[0], f[2]});
+        edges.push_back({f[1], f[2]});
+        verts.insert(verts.end(), f.begin(), f.end());
+      }
+      std::sort(tris.begin(), tris.end());
+      std::sort(edges.begin(), edges.end());
+      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+      std::sort(verts.begin(), verts.end());
+      verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    };
+    std::vector<std::array<int, 3>> tu, tv;
+    std::vector<std::array<int, 2>> eu, ev;
+    std::vector<int> pu, pv;
+    link(u, tu, eu, pu);
+    link(v, tv, ev, pv);
+    // lk(uv): opposite edges of the tets containing both.
+    std::vector<std::array<int, 2>> euv;
+    std::vector<int> puv;
+    for (int t : vt_[v]) {
+      const Tet& q = m_.tets[t];
+      if (std::find(q.begin(), q.end(), u) == q.end()) continue;
+      std::array<int, 2> e;
+      int j = 0;
+      for (int y : q)
+        if (y != u && y != v) e[j++] = y;
+      std::sort(e.begin(), e.end());
+      euv.push_back(e);
+      puv.push_back(e[0]);
+      puv.push_back(e[1]);
+    }
+    std::sort(euv.begin(), euv.end());
+    std::sort(puv.begin(), puv.end());
+    puv.erase(std::unique(puv.begin(), puv.end()), puv.end());
+    std::vector<std::array<int, 3>> ct;
+    std::set_intersection(tu.begin(), tu.end(), tv.begin(), tv.end(), std::back_inserter(ct));
+    if (!ct.empty()) return false;
+    std::vector<std::array<int, 2>> ce;
+    std::set_intersection(eu.begin(), eu.end(), ev.begin(), ev.end(), std::back_inserter(ce));
+    for (const auto& e : ce)
+      if (!std::binary_search(euv.begin(), euv.end(), e)) return false;
+    std::vector<int> cp;
+    std::set_intersection(pu.begin(), pu.end(), pv.begin(), pv.end(), std::back_inserter(cp));
+    for (int p : cp)
+      if (!std::binary_search(puv.begin(), puv.end(), p)) return false;
+    return true;
+  }
+};
+
+void collapse_pass(Optimizer& o, bool only_rational) {
+  auto& m = o.mesh();
+  for (int v = 0; v < m.v.size(); ++v) {
+    if (m.frozen[v] || o.star(v).empty()) continue;
+    const bool rational = !m.v.exact[v];
+    if (only_rational && !rational) continue;
+    auto nb = o.neighbours(v);
+    std::sort(nb.begin(), nb.end(), [&](int a, int b) {
+      return (m.v.d[a] - m.v.d[v]).squaredNorm() < (m.v.d[b] - m.v.d[v]).squaredNorm();
+    });
+    for (int u : nb)
+      if (o.collapse(v, u, !rational)) break;
+  }
+}
+
+void flip_pass(Optimizer& o, double threshold) {
+  auto& m = o.mesh();
+  const int nt = o.num_tets();
+  for (int t = 0; t < nt; ++t) {
+    if (!o.alive(t)) continue;
+    if (o.energy(m.tets[t]) < threshold) continue;
+    const auto q = m.tets[t];
+    bool done = false;
+    for (int i = 0; i < 4 && !done; ++i)
+      for (int j = i + 1; j < 4 && !done; ++j) done = o.flip_32(q[i], q[j]);
+    for (int k = 0; k < 4 && !done; ++k) done = o.flip_23(t, k);
+  }
+}
+
+void smooth_pass(Optimizer& o) {
+  auto& m = o.mesh();
+  for (int v = 0; v < m.v.size(); ++v)
+    if (m.v.exact[v]) o.smooth(v);
+}
+
+} // namespace
+
+mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const FillOptions& options, FillStats& stats) {
+  Optimizer o(std::move(m), stats);
+  std::size_t left = o.round_pass();
+  stats.unrounded_after_first_pass = left;
+  for (int round = 0; round < options.optimize_rounds; ++round) {
+    collapse_pass(o, false);
+    flip_pass(o, 3.0);
+    smooth_pass(o);
+    left = o.round_pass();
+    logger().debug("volume: optimize round {}: {} collapses, {} flips, {} smooths, {} unrounded", round,
+                   stats.collapses, stats.flips, stats.smooths, left);
+  }
+  // Whatever is still rational: remove it or move it to a double position.
+  for (int attempt = 0; attempt < 20 && left > 0; ++attempt) {
+    collapse_pass(o, true);
+    auto& mm = o.mesh();
+    for (int v = 0; v < mm.v.size(); ++v)
+      if (!mm.v.exact[v] && !o.star(v).empty()) o.relocate(v);
+    left = o.round_pass();
+  }
+  left = o.count_rational();
+  if (left > 0) throw Error(ExitCode::internal, fmt::format("volume: {} vertices could not be rounded", left));
+  auto out = o.extract(num_keep);
+  double sum = 0, mx = 0;
+  for (const auto& t : out.tets) {
+    const double e = amips(out.vertices[t[0]], out.vertices[t[1]], out.vertices[t[2]], out.vertices[t[3]]);
+    sum += e;
+    mx = std::max(mx, e);
+  }
+  stats.max_amips = mx;
+  stats.mean_amips = out.tets.empty() ? 0 : sum / static_cast<double>(out.tets.size());
+  return out;
+}
+
+} // namespace curvetet::volume::exact
