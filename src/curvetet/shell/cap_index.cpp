@@ -106,6 +106,8 @@ void CapIndex::update(const Shell& s, std::span<const int> prisms) {
 
 std::vector<std::pair<int, int>> CapIndex::intersections(const Shell& s, std::span<const int> prisms) const {
   const CapView view{s, s.num_prisms(), s.num_vertices()};
+  // Large batches: one box-intersection sweep beats per-cap grid queries.
+  if (prisms.size() * 8 > static_cast<std::size_t>(view.F)) return cap_intersections(s, prisms);
   std::vector<int> mine;
   for (int f : prisms) {
     mine.push_back(f);

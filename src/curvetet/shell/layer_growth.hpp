@@ -11,7 +11,7 @@
 //     target and at neighbour_ratio x the thinnest neighbour); failing prisms / cap pairs touched by a proposal revert their
 //     proposing vertices (re-checking what the reverts touched) until the
 //     shell is valid again. A reverted vertex takes the square root of its
-//     factor and stops when it drops below 1.01; a vertex reaching the
+//     factor and stops when it drops below 1.05; a vertex reaching the
 //     target stops.
 // Only the prisms around changed vertices are re-checked (and their caps
 // against all caps). Deterministic for any thread count.
