@@ -150,6 +150,9 @@ bool prism_section_valid(const Shell& s, int prism, const std::vector<std::vecto
         }
       }
     for (const Vec3* p : {&a, &b, &c}) {
+      // Fast exact path: a corner equal to a middle vertex of this prism is
+      // a vertex of the closed prism.
+      if (*p == s.middle[f[0]] || *p == s.middle[f[1]] || *p == s.middle[f[2]]) continue;
       bool inside = false;
       for (int g : trackers[t])
         if (point_in_prism(s, g, *p)) {
