@@ -1,10 +1,14 @@
-// The main job, `curvetet MESH [options]`. Runs every pipeline stage that
-// exists so far (today: input reading, precondition checks, features) and
-// prints/writes the report.
+// The main job, `curvetet MESH -o OUT.msh [options]`: input checks, then the
+// whole pipeline (pipeline/pipeline.hpp); the mesh is written only when the
+// re-verification of the result passes every guarantee.
 #include "commands.hpp"
 #include "input_stage.hpp"
 
+#include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
+#include "curvetet/io/msh.hpp"
+#include "curvetet/io/vtu.hpp"
+#include "curvetet/pipeline/pipeline.hpp"
 
 #include <memory>
 
@@ -13,20 +17,53 @@ namespace curvetet::app {
 std::function<int()> add_mesh_options(CLI::App& root) {
   struct Options {
     InputOptions input;
-    std::string report_path;
+    std::string output, vtu, report_path;
+    bool binary = false;
+    double epsilon_abs = 0;
+    pipeline::PipelineOptions pipeline;
   };
   auto o = std::make_shared<Options>();
   add_input_options(root, o->input);
-  root.add_option("--report", o->report_path, "Write the JSON report (counts, timings, checks) to FILE");
+  root.add_option("-o,--output", o->output, "Output mesh (.msh, Gmsh 4.1): order-P tets in \"domain\", boundary in \"boundary\"");
+  root.add_option("--order", o->pipeline.order, "Order P of the output tets (middle surface of degree P-1)")
+      ->check(CLI::Range(2, 6))
+      ->capture_default_str();
+  root.add_option("--epsilon", o->pipeline.epsilon, "Distance bound, relative to the input's bbox diagonal")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  root.add_option("--epsilon-abs", o->epsilon_abs, "Distance bound in absolute units (overrides --epsilon)")
+      ->check(CLI::PositiveNumber);
+  root.add_option("--vtu", o->vtu, "Also write a VTK Lagrange .vtu (for ParaView)");
+  root.add_flag("--binary", o->binary, "Write the .msh in binary");
+  root.add_flag("--debug-invariants", o->pipeline.shell.debug_invariants,
+                "Re-check every shell invariant globally after each stage (slow)");
+  root.add_option("--report", o->report_path, "Write the JSON report (counts, timings, guarantees) to FILE");
   return [o]() {
     Report report;
     auto in = read_checked_input(o->input, report);
     logger().info("{}: {}", o->input.mesh_path, in.preconditions.text());
+    int code = 0;
+    if (!o->output.empty() || !o->vtu.empty()) {
+      if (o->epsilon_abs > 0) o->pipeline.epsilon_abs = o->epsilon_abs;
+      auto result = pipeline::run_pipeline(in.mesh, o->pipeline, report);
+      const auto& v = result.verification;
+      logger().info("result: {} tets of order {}, {} boundary triangles; {}", result.mesh.num_tets(), result.mesh.order,
+                    result.mesh.num_boundary(), v.ok() ? "every guarantee verified" : "VERIFICATION FAILED");
+      if (!v.ok()) {
+        logger().error("{}", v.text());
+        code = static_cast<int>(ExitCode::verification);
+      } else {
+        if (!o->output.empty())
+          io::write_msh(o->output, result.mesh, o->binary ? io::MshFormat::v41_binary : io::MshFormat::v41_ascii);
+        if (!o->vtu.empty()) io::write_vtu(o->vtu, result.mesh);
+        logger().info("wrote {}{}", o->output, o->vtu.empty() ? "" : " and " + o->vtu);
+      }
+    }
     if (!o->report_path.empty()) {
       report.write(o->report_path);
       logger().info("report written to {}", o->report_path);
     }
-    return 0;
+    return code;
   };
 }
 
