@@ -278,3 +278,32 @@ TEST(SlabCertificate, RandomSlabsNeverPositiveWhenASampleIsNegative) {
   EXPECT_GT(positive, 60);
   EXPECT_GT(negative, 60);
 }
+
+// Nearly flat tets: the float coefficients are within their radius of zero,
+// so the sign is decided by the exact rational path.
+TEST(Certificate, NearlyFlatTetsAreDecidedExactly) {
+  // Every node exactly representable (dyadic): a flat base at z = 0 and the
+  // apex side at height 2^-61, far below the float radius of the coefficients.
+  for (int p : {2, 3, 4}) {
+    std::vector<Eigen::Vector3d> nodes;
+    for (int i = 0; i < tet_node_count(p); ++i) {
+      auto q = tet_node(p, i);
+      nodes.emplace_back(double(q[0]) / p + 0.25 * q[2] / p, double(q[1]) / p, q[2] * 0x1p-61 / p);
+    }
+    // p = 3 has non-dyadic lattice points (thirds): the float nodes are then
+    // not exactly straight, so only orders 2 and 4 are exactly affine.
+    if (p == 3) continue;
+    auto cert = certify_tet(p, nodes.data());
+    EXPECT_EQ(cert.validity, Validity::positive) << p;
+    EXPECT_TRUE(cert.exact) << p;
+    EXPECT_GT(cert.min_det_lower, 0);
+    auto flat = nodes;
+    for (auto& x : flat) x.z() = 0;
+    auto f = certify_tet(p, flat.data());
+    EXPECT_EQ(f.validity, Validity::invalid) << p;
+    EXPECT_LE(f.min_det_upper, 0);
+    auto below = nodes;
+    for (auto& x : below) x.z() = -x.z();
+    EXPECT_EQ(certify_tet(p, below.data()).validity, Validity::invalid) << p;
+  }
+}
