@@ -139,7 +139,7 @@ TEST(Certificate, CoefficientsEqualSampledAndConvertedDeterminant) {
 // contain both outcomes (so the test can fail).
 TEST(Certificate, NeverPositiveWhenASampleIsNegative) {
   std::mt19937 rng(2024);
-  int positive = 0, invalid = 0, undecided = 0, sampled_negative = 0;
+  int positive = 0, invalid = 0, undecided = 0, sampled_negative = 0, positive_after_subdivision = 0;
   for (int trial = 0; trial < 3000; ++trial) {
     const int p = 2 + trial % 3;
     std::uniform_real_distribution<double> amp(0.0, 0.35);
@@ -158,6 +158,7 @@ TEST(Certificate, NeverPositiveWhenASampleIsNegative) {
     }
     if (cert.validity == Validity::positive) {
       ++positive;
+      positive_after_subdivision += cert.pieces > 1;
       EXPECT_LE(cert.min_det_lower, smin);
     }
     if (cert.validity == Validity::invalid) {
@@ -170,7 +171,9 @@ TEST(Certificate, NeverPositiveWhenASampleIsNegative) {
   EXPECT_GT(positive, 300);
   EXPECT_GT(sampled_negative, 300);
   EXPECT_GT(invalid, 300);
+  EXPECT_GT(positive_after_subdivision, 10); // the heap subdivision is exercised
   RecordProperty("positive", positive);
+  RecordProperty("positive_after_subdivision", positive_after_subdivision);
   RecordProperty("invalid", invalid);
   RecordProperty("undecided", undecided);
 }
