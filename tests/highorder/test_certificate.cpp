@@ -310,3 +310,22 @@ TEST(Certificate, NearlyFlatTetsAreDecidedExactly) {
     EXPECT_EQ(certify_tet(p, below.data()).validity, Validity::invalid) << p;
   }
 }
+
+TEST(SlabCertificate, BezierMiddleGivesTheSameDeterminant) {
+  for (int k = 1; k <= 6; ++k) {
+    auto m = middle_nodes(k, 0.1);
+    const auto& bc = basis_change(2, k);
+    std::vector<Eigen::Vector3d> bezier(m.size(), Eigen::Vector3d::Zero());
+    for (int i = 0; i < int(m.size()); ++i)
+      for (int j = 0; j < int(m.size()); ++j) bezier[i] += bc.lagrange_to_bernstein(i, j) * m[j];
+    std::array<Eigen::Vector3d, 3> bottom = {Eigen::Vector3d(0, 0, -0.3), Eigen::Vector3d(1, 0, -0.2),
+                                             Eigen::Vector3d(0, 1, -0.25)};
+    auto a = slab_jacobian_coefficients(k, m.data(), bottom, SlabSide::bottom);
+    auto b = slab_jacobian_coefficients(k, bezier.data(), bottom, SlabSide::bottom, MiddleBasis::bezier);
+    ASSERT_EQ(a.value.size(), b.value.size());
+    for (std::size_t i = 0; i < a.value.size(); ++i) EXPECT_NEAR(a.value[i], b.value[i], 1e-12) << k << " " << i;
+    EXPECT_EQ(certify_slab(k, bezier.data(), bottom, SlabSide::bottom, {false, false, false}, {}, MiddleBasis::bezier)
+                  .validity,
+              Validity::positive);
+  }
+}

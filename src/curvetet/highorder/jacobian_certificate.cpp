@@ -282,18 +282,21 @@ Certificate certify_tet(int order, const Eigen::Vector3d* nodes, const Certifica
 }
 
 Certificate certify_slab(int k, const Eigen::Vector3d* middle, const std::array<Eigen::Vector3d, 3>& cap,
-                         SlabSide side, const std::array<bool, 3>& collapsed, const CertificateOptions& o) {
+                         SlabSide side, const std::array<bool, 3>& collapsed, const CertificateOptions& o,
+                         MiddleBasis basis) {
   check_order(k);
   const Shape s = make_shape(2, 3 * k - 2, 2);
-  // Middle corner v is node v in the internal triangle order.
+  // Middle corner v: node v in the internal triangle order, or the canonical
+  // corner coefficient (the Bezier control point at the corner).
   unsigned mask = 0;
   for (int v = 0; v < 3; ++v)
     if (collapsed[v]) {
-      if (cap[v] != middle[v])
+      const int corner = basis == MiddleBasis::bezier ? lattice(2, k).corner(v) : v;
+      if (cap[v] != middle[corner])
         throw std::invalid_argument("certify_slab: a collapsed corner's cap point differs from the middle point");
       mask |= 1u << v;
     }
-  ScalarR d = slab_scaled(k, middle, cap, side);
+  ScalarR d = slab_scaled(k, middle, cap, side, basis);
   unscale(s, d);
   Piece root = make_root(s, std::move(d));
   root.collapsed = mask;
@@ -314,7 +317,7 @@ Certificate certify_slab(int k, const Eigen::Vector3d* middle, const std::array<
     rounding_blocked = minv > 0 || cmin <= root.r;
   }
   if (rounding_blocked) {
-    auto exact = slab_scaled_exact(k, middle, cap, side);
+    auto exact = slab_scaled_exact(k, middle, cap, side, basis);
     return decide(s, std::move(root), o, &exact);
   }
   return decide(s, std::move(root), o, nullptr);
@@ -329,10 +332,11 @@ JacobianCoefficients tet_jacobian_coefficients(int order, const Eigen::Vector3d*
 }
 
 JacobianCoefficients slab_jacobian_coefficients(int k, const Eigen::Vector3d* middle,
-                                                const std::array<Eigen::Vector3d, 3>& cap, SlabSide side) {
+                                                const std::array<Eigen::Vector3d, 3>& cap, SlabSide side,
+                                                MiddleBasis basis) {
   check_order(k);
   const Shape s = make_shape(2, 3 * k - 2, 2);
-  ScalarR d = slab_scaled(k, middle, cap, side);
+  ScalarR d = slab_scaled(k, middle, cap, side, basis);
   unscale(s, d);
   return {2, s.n, 2, std::move(d.v), std::move(d.r)};
 }

@@ -154,8 +154,9 @@ std::vector<V3<mpq_class>> control_points<mpq_class>(int dim, int order, const s
 // Tensor coefficients x[alpha, j] of the slab map from M (degree k) and the
 // cap corners (linear, elevated to degree k): j = 0 middle, j = 1 cap.
 template <class T>
-std::vector<V3<T>> slab_control_points(int k, const std::vector<V3<T>>& middle, const std::array<V3<T>, 3>& cap) {
-  auto m = control_points<T>(2, k, middle);
+std::vector<V3<T>> slab_control_points(int k, const std::vector<V3<T>>& middle, const std::array<V3<T>, 3>& cap,
+                                       MiddleBasis basis) {
+  auto m = basis == MiddleBasis::bezier ? middle : control_points<T>(2, k, middle);
   const auto& lat = lattice(2, k);
   std::vector<V3<T>> x(2 * lat.size());
   for (int i = 0; i < lat.size(); ++i) {
@@ -390,7 +391,8 @@ std::vector<mpq_class> tet_scaled_exact(int order, const Eigen::Vector3d* nodes)
   return conv_dot<mpq_class>(plan.dot, g[0], conv_cross<mpq_class>(plan.cross, g[1], g[2]));
 }
 
-ScalarR slab_scaled(int k, const Eigen::Vector3d* middle, const std::array<Eigen::Vector3d, 3>& cap, SlabSide side) {
+ScalarR slab_scaled(int k, const Eigen::Vector3d* middle, const std::array<Eigen::Vector3d, 3>& cap, SlabSide side,
+                    MiddleBasis basis) {
   const Plan& plan = slab_plan(k);
   const int n = triangle_node_count(k);
   auto p = shifted<double>(middle, n, middle[0]);
@@ -402,8 +404,12 @@ ScalarR slab_scaled(int k, const Eigen::Vector3d* middle, const std::array<Eigen
     cap_mag = std::max(cap_mag, norm_inf(c[v]));
   }
   VecR x;
-  x.v = slab_control_points<double>(k, p, c);
-  VecR m = control_points_r(2, k, p, rp);
+  x.v = slab_control_points<double>(k, p, c, basis);
+  VecR m;
+  if (basis == MiddleBasis::bezier)
+    m.r = rp;
+  else
+    m = control_points_r(2, k, p, rp);
   x.r.resize(x.v.size());
   for (int i = 0; i < lattice_size(2, k); ++i) {
     x.r[2 * i] = m.r[i];
@@ -422,13 +428,13 @@ ScalarR slab_scaled(int k, const Eigen::Vector3d* middle, const std::array<Eigen
 }
 
 std::vector<mpq_class> slab_scaled_exact(int k, const Eigen::Vector3d* middle, const std::array<Eigen::Vector3d, 3>& cap,
-                                         SlabSide side) {
+                                         SlabSide side, MiddleBasis basis) {
   const Plan& plan = slab_plan(k);
   auto p = shifted<mpq_class>(middle, triangle_node_count(k), middle[0]);
   std::array<V3<mpq_class>, 3> c;
   for (int v = 0; v < 3; ++v)
     for (int d = 0; d < 3; ++d) c[v][d] = mpq_class(cap[v][d]) - mpq_class(middle[0][d]);
-  auto x = slab_control_points<mpq_class>(k, p, c);
+  auto x = slab_control_points<mpq_class>(k, p, c, basis);
   const Shape s = make_shape(2, k, 1);
   auto xu = simplex_derivative<mpq_class>(s, x, 1), xv = simplex_derivative<mpq_class>(s, x, 2);
   auto xt = t_derivative<mpq_class>(x);

@@ -38,9 +38,10 @@ struct ScalarR {
 // (2, 3k-2, 2), sign of the side applied), in double with radii or exactly.
 ScalarR tet_scaled(int order, const Eigen::Vector3d* nodes);
 std::vector<mpq_class> tet_scaled_exact(int order, const Eigen::Vector3d* nodes);
-ScalarR slab_scaled(int k, const Eigen::Vector3d* middle, const std::array<Eigen::Vector3d, 3>& cap, SlabSide side);
+ScalarR slab_scaled(int k, const Eigen::Vector3d* middle, const std::array<Eigen::Vector3d, 3>& cap, SlabSide side,
+                    MiddleBasis basis);
 std::vector<mpq_class> slab_scaled_exact(int k, const Eigen::Vector3d* middle,
-                                         const std::array<Eigen::Vector3d, 3>& cap, SlabSide side);
+                                         const std::array<Eigen::Vector3d, 3>& cap, SlabSide side, MiddleBasis basis);
 
 // Scaled -> plain Bernstein coefficients (division by the exact weights).
 void unscale(const Shape& s, ScalarR& d);
