@@ -71,6 +71,23 @@ struct Decider {
     return m;
   }
 
+  // The float decision is stuck only because of the radii: every counted
+  // coefficient is positive but not by its radius, or a corner value is
+  // within its radius of zero. Then the exact path decides.
+  bool blocked_by_rounding(Piece& p) const {
+    bound(p);
+    if (p.lower > 0 || corner_upper(p) <= 0) return false;
+    double minv = HUGE_VAL, cmin = HUGE_VAL;
+    for (int i = 0; i < s.size(); ++i)
+      if (!skipped(p, i)) minv = std::min(minv, p.c[i]);
+    for (int v = 0; v <= s.sd; ++v) {
+      if (p.collapsed >> v & 1u) continue;
+      const int base = lat.corner(v) * (s.q + 1);
+      cmin = std::min({cmin, std::abs(p.c[base]), std::abs(p.c[base + s.q])});
+    }
+    return minv > 0 || cmin <= p.r;
+  }
+
   std::pair<Piece, Piece> split(const Piece& p) const {
     // Longest simplex edge in reference coordinates vs the t interval.
     int ea = 0, eb = 1;
@@ -250,6 +267,18 @@ Piece make_root(const Shape& s, ScalarR d) {
   return p;
 }
 
+// The exact coefficients are computed (lazily) only when rounding blocks the
+// float decision.
+template <class ExactScaled>
+Certificate certify(const Shape& s, Piece root, const CertificateOptions& o, ExactScaled exact_scaled) {
+  Decider dec{s, lattice(s.sd, s.n)};
+  if (o.exact_fallback && dec.blocked_by_rounding(root)) {
+    const std::vector<mpq_class> exact = exact_scaled();
+    return decide(s, std::move(root), o, &exact);
+  }
+  return decide(s, std::move(root), o, nullptr);
+}
+
 void check_order(int order) {
   if (order < 1 || order > kMaxOrder) throw std::invalid_argument("certificate: order must be 1..8");
 }
@@ -262,23 +291,7 @@ Certificate certify_tet(int order, const Eigen::Vector3d* nodes, const Certifica
   ScalarR d = tet_scaled(order, nodes);
   unscale(s, d);
   Piece root = make_root(s, std::move(d));
-  // The exact path is only needed when the float decision is blocked by radii.
-  Decider dec{s, lattice(s.sd, s.n)};
-  dec.bound(root);
-  const bool float_clear = root.lower > 0 || dec.corner_upper(root) <= 0;
-  bool rounding_blocked = false;
-  if (!float_clear && o.exact_fallback) {
-    double minv = HUGE_VAL;
-    for (double v : root.c) minv = std::min(minv, v);
-    double cmin = HUGE_VAL;
-    for (int v = 0; v < 4; ++v) cmin = std::min(cmin, std::abs(root.c[dec.lat.corner(v)]));
-    rounding_blocked = minv > 0 || cmin <= root.r;
-  }
-  if (rounding_blocked) {
-    auto exact = tet_scaled_exact(order, nodes);
-    return decide(s, std::move(root), o, &exact);
-  }
-  return decide(s, std::move(root), o, nullptr);
+  return certify(s, std::move(root), o, [&] { return tet_scaled_exact(order, nodes); });
 }
 
 Certificate certify_slab(int k, const Eigen::Vector3d* middle, const std::array<Eigen::Vector3d, 3>& cap,
@@ -300,27 +313,7 @@ Certificate certify_slab(int k, const Eigen::Vector3d* middle, const std::array<
   unscale(s, d);
   Piece root = make_root(s, std::move(d));
   root.collapsed = mask;
-  Decider dec{s, lattice(s.sd, s.n)};
-  dec.bound(root);
-  const bool float_clear = root.lower > 0 || dec.corner_upper(root) <= 0;
-  bool rounding_blocked = false;
-  if (!float_clear && o.exact_fallback) {
-    double minv = HUGE_VAL;
-    for (int i = 0; i < s.size(); ++i)
-      if (!dec.skipped(root, i)) minv = std::min(minv, root.c[i]);
-    double cmin = HUGE_VAL;
-    for (int v = 0; v < 3; ++v) {
-      if (mask >> v & 1u) continue;
-      const int base = dec.lat.corner(v) * 3;
-      cmin = std::min({cmin, std::abs(root.c[base]), std::abs(root.c[base + 2])});
-    }
-    rounding_blocked = minv > 0 || cmin <= root.r;
-  }
-  if (rounding_blocked) {
-    auto exact = slab_scaled_exact(k, middle, cap, side, basis);
-    return decide(s, std::move(root), o, &exact);
-  }
-  return decide(s, std::move(root), o, nullptr);
+  return certify(s, std::move(root), o, [&] { return slab_scaled_exact(k, middle, cap, side, basis); });
 }
 
 JacobianCoefficients tet_jacobian_coefficients(int order, const Eigen::Vector3d* nodes) {
