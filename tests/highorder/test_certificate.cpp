@@ -139,7 +139,7 @@ TEST(Certificate, CoefficientsEqualSampledAndConvertedDeterminant) {
 // contain both outcomes (so the test can fail).
 TEST(Certificate, NeverPositiveWhenASampleIsNegative) {
   std::mt19937 rng(2024);
-  int positive = 0, invalid = 0, undecided = 0, sampled_negative = 0;
+  int positive = 0, invalid = 0, undecided = 0, sampled_negative = 0, positive_after_subdivision = 0;
   for (int trial = 0; trial < 3000; ++trial) {
     const int p = 2 + trial % 3;
     std::uniform_real_distribution<double> amp(0.0, 0.35);
@@ -158,6 +158,7 @@ TEST(Certificate, NeverPositiveWhenASampleIsNegative) {
     }
     if (cert.validity == Validity::positive) {
       ++positive;
+      positive_after_subdivision += cert.pieces > 1;
       EXPECT_LE(cert.min_det_lower, smin);
     }
     if (cert.validity == Validity::invalid) {
@@ -170,7 +171,9 @@ TEST(Certificate, NeverPositiveWhenASampleIsNegative) {
   EXPECT_GT(positive, 300);
   EXPECT_GT(sampled_negative, 300);
   EXPECT_GT(invalid, 300);
+  EXPECT_GT(positive_after_subdivision, 10); // the heap subdivision is exercised
   RecordProperty("positive", positive);
+  RecordProperty("positive_after_subdivision", positive_after_subdivision);
   RecordProperty("invalid", invalid);
   RecordProperty("undecided", undecided);
 }
@@ -277,4 +280,52 @@ TEST(SlabCertificate, RandomSlabsNeverPositiveWhenASampleIsNegative) {
   }
   EXPECT_GT(positive, 60);
   EXPECT_GT(negative, 60);
+}
+
+// Nearly flat tets: the float coefficients are within their radius of zero,
+// so the sign is decided by the exact rational path.
+TEST(Certificate, NearlyFlatTetsAreDecidedExactly) {
+  // Every node exactly representable (dyadic): a flat base at z = 0 and the
+  // apex side at height 2^-61, far below the float radius of the coefficients.
+  for (int p : {2, 3, 4}) {
+    std::vector<Eigen::Vector3d> nodes;
+    for (int i = 0; i < tet_node_count(p); ++i) {
+      auto q = tet_node(p, i);
+      nodes.emplace_back(double(q[0]) / p + 0.25 * q[2] / p, double(q[1]) / p, q[2] * 0x1p-61 / p);
+    }
+    // p = 3 has non-dyadic lattice points (thirds): the float nodes are then
+    // not exactly straight, so only orders 2 and 4 are exactly affine.
+    if (p == 3) continue;
+    auto cert = certify_tet(p, nodes.data());
+    EXPECT_EQ(cert.validity, Validity::positive) << p;
+    EXPECT_TRUE(cert.exact) << p;
+    EXPECT_GT(cert.min_det_lower, 0);
+    auto flat = nodes;
+    for (auto& x : flat) x.z() = 0;
+    auto f = certify_tet(p, flat.data());
+    EXPECT_EQ(f.validity, Validity::invalid) << p;
+    EXPECT_LE(f.min_det_upper, 0);
+    auto below = nodes;
+    for (auto& x : below) x.z() = -x.z();
+    EXPECT_EQ(certify_tet(p, below.data()).validity, Validity::invalid) << p;
+  }
+}
+
+TEST(SlabCertificate, BezierMiddleGivesTheSameDeterminant) {
+  for (int k = 1; k <= 6; ++k) {
+    auto m = middle_nodes(k, 0.1);
+    const auto& bc = basis_change(2, k);
+    std::vector<Eigen::Vector3d> bezier(m.size(), Eigen::Vector3d::Zero());
+    for (int i = 0; i < int(m.size()); ++i)
+      for (int j = 0; j < int(m.size()); ++j) bezier[i] += bc.lagrange_to_bernstein(i, j) * m[j];
+    std::array<Eigen::Vector3d, 3> bottom = {Eigen::Vector3d(0, 0, -0.3), Eigen::Vector3d(1, 0, -0.2),
+                                             Eigen::Vector3d(0, 1, -0.25)};
+    auto a = slab_jacobian_coefficients(k, m.data(), bottom, SlabSide::bottom);
+    auto b = slab_jacobian_coefficients(k, bezier.data(), bottom, SlabSide::bottom, MiddleBasis::bezier);
+    ASSERT_EQ(a.value.size(), b.value.size());
+    for (std::size_t i = 0; i < a.value.size(); ++i) EXPECT_NEAR(a.value[i], b.value[i], 1e-12) << k << " " << i;
+    EXPECT_EQ(certify_slab(k, bezier.data(), bottom, SlabSide::bottom, {false, false, false}, {}, MiddleBasis::bezier)
+                  .validity,
+              Validity::positive);
+  }
 }

@@ -75,8 +75,10 @@ struct Certificate {
 Certificate certify_tet(int order, const Eigen::Vector3d* nodes, const CertificateOptions& options = {});
 
 // Curved prism slab (DESIGN.md §4, paper §4.1): middle triangle of degree k
-// (k in 1..8) given by its Lagrange nodes in internal triangle order, and a
-// linear cap triangle (top or bottom: cap[i] is above/below middle corner i).
+// (k in 1..8) given by its Lagrange nodes in internal triangle order
+// (basis = lagrange) or by its Bezier control points in canonical order
+// (basis = bezier, simplex_lattice.hpp), and a linear cap triangle (top or
+// bottom: cap[i] is above/below middle corner i).
 //   x(u, v, t) = (1 - t) M(u, v) + t C(u, v),  (u, v) in the reference
 //   triangle (0,0),(1,0),(0,1), t in [0, 1] from the middle (t=0) to the cap.
 // The triangle (u, v) is counter-clockwise seen from outside (from the top),
@@ -87,9 +89,10 @@ Certificate certify_tet(int order, const Eigen::Vector3d* nodes, const Certifica
 // checked bitwise): det J vanishes on that pillar, and the certificate then
 // means "s det J > 0 everywhere except on the collapsed pillar(s)".
 enum class SlabSide { top, bottom };
+enum class MiddleBasis { lagrange, bezier };
 Certificate certify_slab(int k, const Eigen::Vector3d* middle_nodes, const std::array<Eigen::Vector3d, 3>& cap,
                          SlabSide side, const std::array<bool, 3>& collapsed = {false, false, false},
-                         const CertificateOptions& options = {});
+                         const CertificateOptions& options = {}, MiddleBasis basis = MiddleBasis::lagrange);
 
 // The Bernstein coefficients behind the certificate, for tests and reports:
 // det J on the simplex (dim 3 for tets, 2 for slabs) x [0,1] (degree t_degree,
@@ -101,7 +104,8 @@ struct JacobianCoefficients {
 };
 JacobianCoefficients tet_jacobian_coefficients(int order, const Eigen::Vector3d* nodes);
 JacobianCoefficients slab_jacobian_coefficients(int k, const Eigen::Vector3d* middle_nodes,
-                                                const std::array<Eigen::Vector3d, 3>& cap, SlabSide side);
+                                                const std::array<Eigen::Vector3d, 3>& cap, SlabSide side,
+                                                MiddleBasis basis = MiddleBasis::lagrange);
 // The same coefficients computed exactly (GMP rationals), rounded to double
 // at the very end (each within one ulp; exact zero stays zero).
 std::vector<double> exact_tet_jacobian_coefficients(int order, const Eigen::Vector3d* nodes);

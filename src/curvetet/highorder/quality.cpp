@@ -6,9 +6,15 @@
 
 #include <Eigen/Dense>
 
+#include "curvetet/highorder/bernstein.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <vector>
 
 namespace curvetet::highorder {
 
@@ -23,6 +29,35 @@ const Eigen::Matrix3d& regular_tet_inverse() {
     return Eigen::Matrix3d(w.inverse());
   }();
   return inv;
+}
+
+// Lagrange gradients at the sample points of tet_quality, once per order:
+// first the nodes (scaled Jacobian only), then the quadrature points.
+struct TetSamples {
+  std::vector<Eigen::MatrixXd> gradients; // N x 3 each
+  std::size_t num_nodes = 0;
+  std::vector<double> weights; // quadrature points only
+};
+
+const TetSamples& tet_samples(int order) {
+  static std::unique_ptr<TetSamples> cache[kMaxOrder + 1];
+  static std::once_flag once[kMaxOrder + 1];
+  std::call_once(once[order], [order] {
+    auto s = std::make_unique<TetSamples>();
+    for (int i = 0; i < tet_node_count(order); ++i) {
+      auto p = tet_node(order, i);
+      const double xi[3] = {double(p[0]) / order, double(p[1]) / order, double(p[2]) / order};
+      s->gradients.push_back(lagrange_gradients(3, order, xi));
+    }
+    s->num_nodes = s->gradients.size();
+    const Quadrature rule = tet_quadrature(order + 1);
+    for (std::size_t k = 0; k < rule.points.size(); ++k) {
+      s->gradients.push_back(lagrange_gradients(3, order, rule.points[k].data()));
+      s->weights.push_back(rule.weights[k]);
+    }
+    cache[order] = std::move(s);
+  });
+  return *cache[order];
 }
 
 } // namespace
@@ -59,23 +94,23 @@ double triangle_mips(const Eigen::Matrix<double, 3, 2>& j) {
 }
 
 TetQuality tet_quality(int order, const Eigen::Vector3d* nodes) {
+  if (order < 1 || order > kMaxOrder) throw std::invalid_argument("tet_quality: order must be 1..8");
+  const TetSamples& samples = tet_samples(order);
+  const int n = tet_node_count(order);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> x(3, n);
+  for (int i = 0; i < n; ++i) x.col(i) = nodes[i];
   TetQuality q;
   q.min_scaled_jacobian = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < tet_node_count(order); ++i) {
-    auto p = tet_node(order, i);
-    Eigen::Vector3d xi(p[0], p[1], p[2]);
-    xi /= order;
-    q.min_scaled_jacobian = std::min(q.min_scaled_jacobian, scaled_jacobian(tet_jacobian(order, nodes, xi)));
-  }
-  const Quadrature rule = tet_quadrature(order + 1);
   double sum = 0, wsum = 0;
-  for (std::size_t k = 0; k < rule.points.size(); ++k) {
-    const Eigen::Matrix3d j = tet_jacobian(order, nodes, rule.points[k]);
+  for (std::size_t k = 0; k < samples.gradients.size(); ++k) {
+    const Eigen::Matrix3d j = x * samples.gradients[k];
     q.min_scaled_jacobian = std::min(q.min_scaled_jacobian, scaled_jacobian(j));
+    if (k < samples.num_nodes) continue;
+    const double w = samples.weights[k - samples.num_nodes];
     const double e = amips(j);
     q.max_amips = std::max(q.max_amips, e);
-    sum += rule.weights[k] * e;
-    wsum += rule.weights[k];
+    sum += w * e;
+    wsum += w;
   }
   q.mean_amips = sum / wsum;
   return q;
