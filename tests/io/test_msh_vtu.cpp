@@ -106,3 +106,19 @@ TEST(Vtu, WritesLagrangeCellsAndFields) {
   EXPECT_NE(text.find(io::base64(raw.data(), raw.size())), std::string::npos);
   EXPECT_THROW(io::write_vtu(path, m, {{"bad", {1.0}}}), Error);
 }
+
+// Several physical tags per dimension (e.g. `tetrahedralize --exterior`:
+// interior and exterior regions) become one entity each and survive a round
+// trip in every format, elements in their original order.
+TEST(Msh, SeveralPhysicalTagsPerDimension) {
+  auto m = curvetet::testing::curved_box(2, 2, 0.1);
+  for (int t = 0; t < m.num_tets(); ++t) m.tet_tags[t] = t % 2 ? 7 : mesh::kDomainTag;
+  for (int b = 0; b < m.num_boundary(); ++b) m.boundary_tags[b] = b % 3 ? mesh::kBoundaryTag : 9;
+  m.groups.push_back({3, 7, "exterior"});
+  m.groups.push_back({2, 9, "other"});
+  for (auto format : {io::MshFormat::v41_ascii, io::MshFormat::v41_binary, io::MshFormat::v22_ascii}) {
+    const std::string path = temp_path("tags.msh");
+    io::write_msh(path, m, format);
+    expect_same(m, io::read_msh(path));
+  }
+}

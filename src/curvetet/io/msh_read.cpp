@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <cctype>
 #include <charconv>
 #include <cstdint>
@@ -118,6 +120,7 @@ struct Raw {
   struct Element {
     int type, physical;
     std::vector<std::int64_t> nodes;
+    std::int64_t tag = 0; // element tag: elements are kept in tag order
   };
   std::vector<Element> elements;
   std::vector<mesh::PhysicalGroup> groups;
@@ -202,8 +205,8 @@ void read_elements_v41(MshCursor& c, bool binary, const EntityPhysical& phys, Ra
     auto it = phys.find({dim, tag});
     const int physical = it == phys.end() ? 0 : it->second;
     for (std::uint64_t i = 0; i < n; ++i) {
-      c.value<std::uint64_t>(binary);
-      Raw::Element e{type, physical, {}};
+      const auto element_tag = c.value<std::int64_t, std::uint64_t>(binary);
+      Raw::Element e{type, physical, {}, element_tag};
       e.nodes.resize(per);
       for (int k = 0; k < per; ++k) e.nodes[k] = c.value<std::int64_t, std::uint64_t>(binary);
       raw.elements.push_back(std::move(e));
@@ -224,7 +227,7 @@ void read_nodes_v22(MshCursor& c, Raw& raw) {
 void read_elements_v22(MshCursor& c, Raw& raw) {
   const auto n = c.text<std::int64_t>();
   for (std::int64_t i = 0; i < n; ++i) {
-    c.text<std::int64_t>();
+    const auto element_tag = c.text<std::int64_t>();
     const int type = c.text<int>();
     const int ntags = c.text<int>();
     int physical = 0;
@@ -237,7 +240,7 @@ void read_elements_v22(MshCursor& c, Raw& raw) {
       c.rest_of_line();
       continue;
     }
-    Raw::Element e{type, physical, {}};
+    Raw::Element e{type, physical, {}, element_tag};
     e.nodes.resize(per);
     for (int k = 0; k < per; ++k) e.nodes[k] = c.text<std::int64_t>();
     raw.elements.push_back(std::move(e));
@@ -270,6 +273,9 @@ mesh::TetMesh assemble(Raw& raw, const std::string& name) {
     if (it == index.end()) throw Error(ExitCode::io, fmt::format("{}: element refers to missing node {}", name, tag));
     return it->second;
   };
+  // Blocks group elements by entity; the tags give back the writer's order.
+  std::stable_sort(raw.elements.begin(), raw.elements.end(),
+                   [](const Raw::Element& a, const Raw::Element& b) { return a.tag < b.tag; });
   for (const auto& e : raw.elements) {
     if (highorder::gmsh_tet_order(e.type)) {
       for (auto t : e.nodes) m.tets.push_back(id(t));

@@ -14,17 +14,59 @@ namespace curvetet::io {
 
 namespace {
 
+int tag_or_zero(const std::vector<int>& tags, int i) { return i < static_cast<int>(tags.size()) ? tags[i] : 0; }
+
+// Distinct physical tags in order of first use (0 = none counts as a tag, so
+// every element has an entity).
+std::vector<int> distinct(const std::vector<int>& tags, int count) {
+  std::vector<int> out;
+  for (int i = 0; i < count; ++i) {
+    const int t = tag_or_zero(tags, i);
+    if (std::find(out.begin(), out.end(), t) == out.end()) out.push_back(t);
+  }
+  return out;
+}
+
+int index_of(const std::vector<int>& v, int x) { return static_cast<int>(std::find(v.begin(), v.end(), x) - v.begin()); }
+
+// One geometric entity per physical tag and dimension: surfaces (dim 2,
+// entity tags 1..S) for the boundary triangles, volumes (dim 3, entity tags
+// 1..V) for the tets. A node belongs to the first entity, surfaces first,
+// whose elements use it (unused nodes go to the first volume).
 struct Layout {
-  // Nodes on the boundary go to the surface entity, the others to the volume.
-  std::vector<int> surface_nodes, volume_nodes;
+  std::vector<int> surface_phys, volume_phys;
+  std::vector<int> triangle_entity, tet_entity;     // 0-based entity index per element
+  std::vector<std::vector<int>> surface_nodes, volume_nodes;
   Eigen::Vector3d lo, hi;
 };
 
 Layout layout(const mesh::TetMesh& m) {
   Layout l;
-  std::vector<char> on_surface(m.nodes.size(), 0);
-  for (int id : m.boundary) on_surface[id] = 1;
-  for (int i = 0; i < static_cast<int>(m.nodes.size()); ++i) (on_surface[i] ? l.surface_nodes : l.volume_nodes).push_back(i);
+  l.surface_phys = distinct(m.boundary_tags, m.num_boundary());
+  l.volume_phys = distinct(m.tet_tags, m.num_tets());
+  if (l.volume_phys.empty()) l.volume_phys.push_back(0);
+  l.surface_nodes.resize(l.surface_phys.size());
+  l.volume_nodes.resize(l.volume_phys.size());
+  std::vector<int> owner(m.nodes.size(), -1); // entity: s for surfaces, S + v for volumes
+  const int S = static_cast<int>(l.surface_phys.size());
+  for (int b = 0; b < m.num_boundary(); ++b) {
+    l.triangle_entity.push_back(index_of(l.surface_phys, tag_or_zero(m.boundary_tags, b)));
+    for (int i = 0; i < m.triangle_nodes(); ++i) {
+      int& o = owner[m.boundary_triangle(b)[i]];
+      if (o < 0) o = l.triangle_entity.back();
+    }
+  }
+  for (int t = 0; t < m.num_tets(); ++t) {
+    l.tet_entity.push_back(index_of(l.volume_phys, tag_or_zero(m.tet_tags, t)));
+    for (int i = 0; i < m.tet_nodes(); ++i) {
+      int& o = owner[m.tet(t)[i]];
+      if (o < 0) o = S + l.tet_entity.back();
+    }
+  }
+  for (int i = 0; i < static_cast<int>(m.nodes.size()); ++i) {
+    const int o = std::max(owner[i], S);
+    (o < S ? l.surface_nodes[o] : l.volume_nodes[o - S]).push_back(i);
+  }
   l.lo = l.hi = m.nodes.empty() ? Eigen::Vector3d::Zero() : m.nodes.front();
   for (const auto& p : m.nodes) {
     l.lo = l.lo.cwiseMin(p);
@@ -33,21 +75,9 @@ Layout layout(const mesh::TetMesh& m) {
   return l;
 }
 
-int tag_or_zero(const std::vector<int>& tags, int i) { return i < static_cast<int>(tags.size()) ? tags[i] : 0; }
-
-// Physical tags of the surface and volume entities: every distinct tag used.
-std::vector<int> distinct(const std::vector<int>& tags) {
-  std::vector<int> out;
-  for (int t : tags)
-    if (t != 0 && std::find(out.begin(), out.end(), t) == out.end()) out.push_back(t);
-  return out;
-}
-
 void check_mesh(const mesh::TetMesh& m) {
   if (m.order < 1 || m.order > highorder::kMaxOrder)
     throw Error(ExitCode::internal, fmt::format("write_msh: order {} not supported (1..8)", m.order));
-  if (distinct(m.tet_tags).size() > 1 || distinct(m.boundary_tags).size() > 1)
-    throw Error(ExitCode::internal, "write_msh: one physical tag per element dimension is supported");
 }
 
 void write_physical_names(std::ostream& o, const mesh::TetMesh& m) {
@@ -62,14 +92,48 @@ void put(std::ostream& o, T v) {
   o.write(reinterpret_cast<const char*>(&v), sizeof(T));
 }
 
+// Writes integers/doubles as text (space separated) or binary (given type).
+class Out {
+ public:
+  Out(std::ostream& o, bool binary) : o_(o), binary_(binary) {}
+  template <class T>
+  Out& num(T v) {
+    if (binary_)
+      put<T>(o_, v);
+    else
+      o_ << (first_ ? "" : " ") << v;
+    first_ = false;
+    return *this;
+  }
+  Out& real(double v) {
+    if (binary_)
+      put<double>(o_, v);
+    else
+      o_ << (first_ ? "" : " ") << fmt::format("{:.17g}", v);
+    first_ = false;
+    return *this;
+  }
+  void endl() {
+    if (!binary_) o_ << '\n';
+    first_ = true;
+  }
+  void end_section() {
+    if (binary_) o_ << '\n';
+  }
+
+ private:
+  std::ostream& o_;
+  bool binary_;
+  bool first_ = true;
+};
+
 void write_v41(std::ostream& o, const mesh::TetMesh& m, bool binary) {
   const Layout l = layout(m);
-  const auto surf_phys = distinct(m.boundary_tags), vol_phys = distinct(m.tet_tags);
   const int tri_type = highorder::gmsh_triangle_type(m.order), tet_type = highorder::gmsh_tet_type(m.order);
-  const int nt = m.triangle_nodes(), nv = m.tet_nodes();
   const std::size_t num_nodes = m.nodes.size();
   const std::size_t num_elements = static_cast<std::size_t>(m.num_boundary()) + m.num_tets();
-  const bool has_surface = m.num_boundary() > 0;
+  const std::size_t S = l.surface_phys.size(), V = l.volume_phys.size();
+  Out out(o, binary);
 
   o << "$MeshFormat\n4.1 " << (binary ? 1 : 0) << " 8\n";
   if (binary) {
@@ -80,129 +144,82 @@ void write_v41(std::ostream& o, const mesh::TetMesh& m, bool binary) {
   write_physical_names(o, m);
 
   o << "$Entities\n";
-  if (!binary) {
-    o << "0 0 " << (has_surface ? 1 : 0) << " 1\n";
-    auto box = fmt::format("{:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}", l.lo.x(), l.lo.y(), l.lo.z(), l.hi.x(),
-                           l.hi.y(), l.hi.z());
-    if (has_surface) {
-      o << "1 " << box << ' ' << surf_phys.size();
-      for (int t : surf_phys) o << ' ' << t;
-      o << " 0\n";
-    }
-    o << "1 " << box << ' ' << vol_phys.size();
-    for (int t : vol_phys) o << ' ' << t;
-    o << ' ' << (has_surface ? "1 1" : "0") << '\n';
-  } else {
-    put<std::uint64_t>(o, 0);
-    put<std::uint64_t>(o, 0);
-    put<std::uint64_t>(o, has_surface ? 1 : 0);
-    put<std::uint64_t>(o, 1);
-    auto box = [&] {
-      for (int k = 0; k < 3; ++k) put<double>(o, l.lo[k]);
-      for (int k = 0; k < 3; ++k) put<double>(o, l.hi[k]);
-    };
-    if (has_surface) {
-      put<int>(o, 1);
-      box();
-      put<std::uint64_t>(o, surf_phys.size());
-      for (int t : surf_phys) put<int>(o, t);
-      put<std::uint64_t>(o, 0);
-    }
-    put<int>(o, 1);
-    box();
-    put<std::uint64_t>(o, vol_phys.size());
-    for (int t : vol_phys) put<int>(o, t);
-    put<std::uint64_t>(o, has_surface ? 1 : 0);
-    if (has_surface) put<int>(o, 1);
-    o << '\n';
-  }
+  out.num<std::uint64_t>(0).num<std::uint64_t>(0).num<std::uint64_t>(S).num<std::uint64_t>(V);
+  out.endl();
+  auto entity = [&](int tag, int phys, std::size_t bounding) {
+    out.num<int>(tag);
+    for (int k = 0; k < 3; ++k) out.real(l.lo[k]);
+    for (int k = 0; k < 3; ++k) out.real(l.hi[k]);
+    out.num<std::uint64_t>(phys != 0 ? 1 : 0);
+    if (phys != 0) out.num<int>(phys);
+    out.num<std::uint64_t>(bounding);
+    for (std::size_t s = 0; s < bounding; ++s) out.num<int>(static_cast<int>(s + 1));
+    out.endl();
+  };
+  for (std::size_t s = 0; s < S; ++s) entity(static_cast<int>(s + 1), l.surface_phys[s], 0);
+  for (std::size_t v = 0; v < V; ++v) entity(static_cast<int>(v + 1), l.volume_phys[v], V == 1 ? S : 0);
+  out.end_section();
   o << "$EndEntities\n";
 
   // Nodes: one block per entity holding nodes.
   struct Block {
-    int dim;
+    int dim, tag;
     const std::vector<int>* ids;
   };
   std::vector<Block> blocks;
-  if (!l.surface_nodes.empty()) blocks.push_back({2, &l.surface_nodes});
-  if (!l.volume_nodes.empty()) blocks.push_back({3, &l.volume_nodes});
+  for (std::size_t s = 0; s < S; ++s)
+    if (!l.surface_nodes[s].empty()) blocks.push_back({2, static_cast<int>(s + 1), &l.surface_nodes[s]});
+  for (std::size_t v = 0; v < V; ++v)
+    if (!l.volume_nodes[v].empty()) blocks.push_back({3, static_cast<int>(v + 1), &l.volume_nodes[v]});
   o << "$Nodes\n";
-  if (!binary) {
-    o << blocks.size() << ' ' << num_nodes << ' ' << (num_nodes ? 1 : 0) << ' ' << num_nodes << '\n';
-    for (const auto& b : blocks) {
-      o << b.dim << " 1 0 " << b.ids->size() << '\n';
-      for (int id : *b.ids) o << id + 1 << '\n';
-      for (int id : *b.ids) {
-        const auto& p = m.nodes[id];
-        o << fmt::format("{:.17g} {:.17g} {:.17g}\n", p.x(), p.y(), p.z());
-      }
+  out.num<std::uint64_t>(blocks.size()).num<std::uint64_t>(num_nodes).num<std::uint64_t>(num_nodes ? 1 : 0);
+  out.num<std::uint64_t>(num_nodes);
+  out.endl();
+  for (const auto& b : blocks) {
+    out.num<int>(b.dim).num<int>(b.tag).num<int>(0).num<std::uint64_t>(b.ids->size());
+    out.endl();
+    for (int id : *b.ids) {
+      out.num<std::uint64_t>(static_cast<std::uint64_t>(id) + 1);
+      out.endl();
     }
-  } else {
-    put<std::uint64_t>(o, blocks.size());
-    put<std::uint64_t>(o, num_nodes);
-    put<std::uint64_t>(o, num_nodes ? 1 : 0);
-    put<std::uint64_t>(o, num_nodes);
-    for (const auto& b : blocks) {
-      put<int>(o, b.dim);
-      put<int>(o, 1);
-      put<int>(o, 0);
-      put<std::uint64_t>(o, b.ids->size());
-      for (int id : *b.ids) put<std::uint64_t>(o, static_cast<std::uint64_t>(id) + 1);
-      for (int id : *b.ids)
-        for (int k = 0; k < 3; ++k) put<double>(o, m.nodes[id][k]);
+    for (int id : *b.ids) {
+      for (int k = 0; k < 3; ++k) out.real(m.nodes[id][k]);
+      out.endl();
     }
-    o << '\n';
   }
+  out.end_section();
   o << "$EndNodes\n";
 
+  // Elements: one block per entity, boundary triangles first, then tets.
   o << "$Elements\n";
-  const std::size_t num_blocks = (has_surface ? 1 : 0) + (m.num_tets() > 0 ? 1 : 0);
-  std::uint64_t tag = 1;
-  if (!binary) {
-    o << num_blocks << ' ' << num_elements << ' ' << (num_elements ? 1 : 0) << ' ' << num_elements << '\n';
-    if (has_surface) {
-      o << "2 1 " << tri_type << ' ' << m.num_boundary() << '\n';
-      for (int b = 0; b < m.num_boundary(); ++b) {
-        o << tag++;
-        for (int i = 0; i < nt; ++i) o << ' ' << m.boundary_triangle(b)[i] + 1;
-        o << '\n';
-      }
+  std::vector<std::vector<int>> tri_of(S), tet_of(V);
+  for (int b = 0; b < m.num_boundary(); ++b) tri_of[l.triangle_entity[b]].push_back(b);
+  for (int t = 0; t < m.num_tets(); ++t) tet_of[l.tet_entity[t]].push_back(t);
+  std::size_t num_blocks = 0;
+  for (const auto& x : tri_of) num_blocks += !x.empty();
+  for (const auto& x : tet_of) num_blocks += !x.empty();
+  out.num<std::uint64_t>(num_blocks).num<std::uint64_t>(num_elements).num<std::uint64_t>(num_elements ? 1 : 0);
+  out.num<std::uint64_t>(num_elements);
+  out.endl();
+  // Element tag = position in the mesh (triangles first): readers restore
+  // the order from it across blocks.
+  auto element_block = [&](int dim, int entity_tag, int type, const std::vector<int>& ids, int per, auto nodes_of) {
+    if (ids.empty()) return;
+    const std::uint64_t first_tag = dim == 2 ? 1 : static_cast<std::uint64_t>(m.num_boundary()) + 1;
+    out.num<int>(dim).num<int>(entity_tag).num<int>(type).num<std::uint64_t>(ids.size());
+    out.endl();
+    for (int e : ids) {
+      out.num<std::uint64_t>(first_tag + e);
+      for (int i = 0; i < per; ++i) out.num<std::uint64_t>(static_cast<std::uint64_t>(nodes_of(e)[i]) + 1);
+      out.endl();
     }
-    if (m.num_tets() > 0) {
-      o << "3 1 " << tet_type << ' ' << m.num_tets() << '\n';
-      for (int t = 0; t < m.num_tets(); ++t) {
-        o << tag++;
-        for (int i = 0; i < nv; ++i) o << ' ' << m.tet(t)[i] + 1;
-        o << '\n';
-      }
-    }
-  } else {
-    put<std::uint64_t>(o, num_blocks);
-    put<std::uint64_t>(o, num_elements);
-    put<std::uint64_t>(o, num_elements ? 1 : 0);
-    put<std::uint64_t>(o, num_elements);
-    if (has_surface) {
-      put<int>(o, 2);
-      put<int>(o, 1);
-      put<int>(o, tri_type);
-      put<std::uint64_t>(o, m.num_boundary());
-      for (int b = 0; b < m.num_boundary(); ++b) {
-        put<std::uint64_t>(o, tag++);
-        for (int i = 0; i < nt; ++i) put<std::uint64_t>(o, static_cast<std::uint64_t>(m.boundary_triangle(b)[i]) + 1);
-      }
-    }
-    if (m.num_tets() > 0) {
-      put<int>(o, 3);
-      put<int>(o, 1);
-      put<int>(o, tet_type);
-      put<std::uint64_t>(o, m.num_tets());
-      for (int t = 0; t < m.num_tets(); ++t) {
-        put<std::uint64_t>(o, tag++);
-        for (int i = 0; i < nv; ++i) put<std::uint64_t>(o, static_cast<std::uint64_t>(m.tet(t)[i]) + 1);
-      }
-    }
-    o << '\n';
-  }
+  };
+  for (std::size_t s = 0; s < S; ++s)
+    element_block(2, static_cast<int>(s + 1), tri_type, tri_of[s], m.triangle_nodes(),
+                  [&](int b) { return m.boundary_triangle(b); });
+  for (std::size_t v = 0; v < V; ++v)
+    element_block(3, static_cast<int>(v + 1), tet_type, tet_of[v], m.tet_nodes(), [&](int t) { return m.tet(t); });
+  out.end_section();
   o << "$EndElements\n";
 }
 
