@@ -168,7 +168,7 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
     for (int v : changed) {
       if (failed[v]) {
         factor[v] = std::sqrt(factor[v]);
-        if (factor[v] < 1.05) done[v] = 1;
+        if (factor[v] < spec.min_factor) done[v] = 1;
       } else {
         ++grown;
         if (len[v] >= spec.target) done[v] = 1;
