@@ -209,14 +209,15 @@ std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<con
   std::sort(mine.begin(), mine.end());
   mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
   const auto pairs = geometry::overlapping_pairs(cap_boxes(view, mine), cap_boxes(view, all));
+  // A pair of two queried caps is reported twice: keep it from its smaller cap.
+  std::vector<char> queried(all.size(), 0);
+  for (int c : mine) queried[c] = 1;
   std::vector<std::pair<int, int>> candidates;
   candidates.reserve(pairs.size());
   for (auto [i, j] : pairs) {
     const int a = mine[i], b = all[j];
-    if (a != b) candidates.emplace_back(std::min(a, b), std::max(a, b));
+    if (a != b && (a < b || !queried[b])) candidates.emplace_back(std::min(a, b), std::max(a, b));
   }
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   return decide_cap_pairs(view, std::move(candidates));
 }
 

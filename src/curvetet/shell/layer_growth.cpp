@@ -3,7 +3,7 @@
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
 #include "curvetet/mesh/edge_topology.hpp"
-#include "curvetet/shell/invariants.hpp"
+#include "curvetet/shell/invariant_set.hpp"
 
 #include <fmt/format.h>
 
@@ -26,6 +26,7 @@ struct Grower {
   std::vector<std::vector<int>> trackers;
   std::unique_ptr<CapIndex> caps; // built once the initial layer is placed
   std::vector<std::vector<int>> neighbours;
+  InvariantSet invariants = InvariantSet::shell_invariants();
 
   void place(int v) {
     const Vec3& d = spec.direction[v];
@@ -49,18 +50,8 @@ struct Grower {
 
   // Prisms among (or meeting caps of) `prisms` that break invariant 1-3.
   std::vector<int> implicated(const std::vector<int>& prisms) {
-    std::vector<int> bad = non_positive_prisms(s, prisms);
-    const auto sec = invalid_section_prisms(s, prisms, trackers);
-    bad.insert(bad.end(), sec.begin(), sec.end());
-    const int F = s.num_prisms();
     caps->update(s, prisms);
-    for (auto [a, b] : caps->intersections(s, prisms)) {
-      bad.push_back(a % F);
-      bad.push_back(b % F);
-    }
-    std::sort(bad.begin(), bad.end());
-    bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
-    return bad;
+    return invariants.implicated(s, prisms, InvariantContext{&trackers, caps.get()});
   }
 
   std::vector<int> vertices_of(const std::vector<int>& prisms) const {
@@ -168,7 +159,7 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
     for (int v : changed) {
       if (failed[v]) {
         factor[v] = std::sqrt(factor[v]);
-        if (factor[v] < 1.05) done[v] = 1;
+        if (factor[v] < spec.min_factor) done[v] = 1;
       } else {
         ++grown;
         if (len[v] >= spec.target) done[v] = 1;
