@@ -1,13 +1,8 @@
 #pragma once
 // Exact self-intersection test of a triangle mesh (any topology).
 //
-// Two faces intersect improperly when
-//  - they share no vertex and meet at all;
-//  - they share exactly one vertex v and meet anywhere else: decided as
-//    "the edge opposite v in one meets the other face" (either way round),
-//    which is exact and complete because both faces are convex and contain v;
-//  - they share an edge and are coplanar with their third corners on the
-//    same side of it (they overlap: a fold of zero dihedral angle).
+// Two faces intersect improperly by geometry::triangles_intersect_improperly
+// (shared vertex ids decide which corners are shared).
 // Degenerate (zero-area) faces are skipped: they are reported on their own.
 // Candidates come from bounding-box overlap; every decision is exact.
 #include "curvetet/mesh/surface_mesh.hpp"
