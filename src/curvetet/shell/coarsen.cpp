@@ -303,7 +303,10 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
       split = std::make_unique<SplitOp>(o.split_factor * mean_edge_length(s));
       ops.push_back(split.get());
     }
+    const std::size_t round_start = out.passes.size();
     for (const Operation* op : ops) {
+      // Splits only help a coarsening that is still moving.
+      if (op->kind() == OpKind::split && collapsed == 0) continue;
       auto st = run_pass(editor, *op, ctx, invariants, round);
       if (op->kind() == OpKind::collapse) collapsed = st.accepted;
       logger().info("coarsen round {} {}: {} -> {} faces, {}/{} accepted, {:.2f} s", round, to_string(st.op),
@@ -313,7 +316,7 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
     }
     // Stop when collapses stall: none accepted, or the round removed less
     // than min_round_gain of the faces (splits can re-add a few each round).
-    const int before = out.passes[out.passes.size() - ops.size()].faces_before;
+    const int before = out.passes[round_start].faces_before;
     if (collapsed == 0 || before - s.num_prisms() < o.min_round_gain * before) break;
   }
   out.faces_after = s.num_prisms();
