@@ -1,6 +1,7 @@
-// Real meshes from ../shared/data/good (a small subset keeps CI fast; the
-// full sweep is bench/shell_sweep.sh): the shell builds, the global checker
-// passes, Π is the identity at input vertices and Π⁻¹(Π(p)) = p.
+// Real meshes from ../shared/data/good: the shell builds, the global checker
+// passes, Π is the identity at input vertices and Π⁻¹(Π(p)) = p. A small
+// subset keeps CI fast; CURVETET_SHELL_ALL_MESHES=1 runs every good mesh
+// (and the default 20 rounds), as bench/shell_sweep.sh does for the CLI.
 #include "curvetet/io/read_surface.hpp"
 #include "curvetet/shell/build.hpp"
 #include "curvetet/shell/invariants.hpp"
@@ -8,6 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <random>
 #include <string>
 
@@ -16,13 +20,25 @@ using namespace curvetet::shell;
 
 namespace {
 
+bool all_meshes() { return std::getenv("CURVETET_SHELL_ALL_MESHES") != nullptr; }
+
+std::vector<std::string> meshes() {
+  if (!all_meshes())
+    return {"thingi10k_288351.off", "couplingdown.off", "abc_00000001_forgescan.off", "spot.off", "bunny_libigl.off"};
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(CURVETET_SHARED_DATA) + "/good"))
+    if (e.path().extension() == ".off") out.push_back(e.path().filename().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 class GoodMesh : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GoodMesh, ShellIsValidAndTheMapRoundTrips) {
   const std::string path = std::string(CURVETET_SHARED_DATA) + "/good/" + GetParam();
   const auto input = mesh::to_surface_mesh(io::read_surface(path));
   ShellOptions o;
-  o.extrusion.max_rounds = 10; // CI time; the sweep script runs the default
+  if (!all_meshes()) o.extrusion.max_rounds = 10; // CI time
   o.debug_invariants = true;   // global check after each stage (throws)
   const auto b = build_shell(input, o);
   const Shell& s = b.shell;
@@ -58,8 +74,7 @@ TEST_P(GoodMesh, ShellIsValidAndTheMapRoundTrips) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Data, GoodMesh,
-                         ::testing::Values("thingi10k_288351.off", "couplingdown.off", "abc_00000001_forgescan.off",
-                                           "spot.off", "bunny_libigl.off"),
+                         ::testing::ValuesIn(meshes()),
                          [](const auto& info) {
                            std::string n = info.param.substr(0, info.param.find('.'));
                            for (auto& ch : n)

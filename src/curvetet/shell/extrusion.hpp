@@ -39,6 +39,12 @@ struct ExtrusionOptions {
   double singular_dot = 1e-3;       // min n.d below this -> singular vertex
 };
 
+// The absolute length an option pair means: `absolute` if > 0, else
+// relative * diagonal.
+inline double absolute_length(double relative, double absolute, double diagonal) {
+  return absolute > 0 ? absolute : relative * diagonal;
+}
+
 enum class Side { inward, outward };
 
 // Result of extrude_one_sided. All vectors have one entry per surface vertex.
