@@ -1,9 +1,12 @@
-// `curvetet shell MESH -o DIR/ [--debug-invariants] [--no-coarsen]`: builds
-// the bijective prismatic shell and writes
+// `curvetet shell MESH -o DIR/ [--epsilon E | --epsilon-abs A] [--no-coarsen]
+// [--debug-invariants]`: builds the bijective prismatic shell, coarsens it
+// under the distance bound (shell/coarsen.hpp) and writes
 //   DIR/bottom.ply, DIR/middle.ply, DIR/top.ply  (same faces, 0-based ids)
 //   DIR/map.txt      for each input vertex: middle face id and (u, v)
 //                    (layout: io/write_vertex_map.hpp)
-//   DIR/report.json  counts, thickness statistics, singular vertices, timings
+//   DIR/report.json  counts, thickness statistics, singular vertices, timings,
+//                    coarsening: faces before/after, per pass operations
+//                    tried/accepted/rejected per reason and seconds
 // Everything is computed before the first file is written; each file is
 // written atomically.
 #include "commands.hpp"
@@ -14,6 +17,7 @@
 #include "curvetet/io/write_surface.hpp"
 #include "curvetet/io/write_vertex_map.hpp"
 #include "curvetet/shell/build.hpp"
+#include "curvetet/shell/coarsen.hpp"
 #include "curvetet/shell/invariants.hpp"
 
 #include <filesystem>
@@ -37,6 +41,37 @@ nlohmann::json stats_json(const shell::ShellBuildStats& s) {
           {"thickness", {{"min", s.min_thickness}, {"max", s.max_thickness}, {"mean", s.mean_thickness}}}};
 }
 
+nlohmann::json coarsen_json(const shell::CoarsenStats& c) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const auto& p : c.passes) {
+    nlohmann::json rejected = nlohmann::json::object();
+    long long total = 0;
+    for (int k = 0; k < shell::kRejectionCount; ++k) {
+      rejected[std::string(shell::to_string(shell::Rejection(k)))] = p.rejected[k];
+      total += p.rejected[k];
+    }
+    passes.push_back({{"round", p.round},
+                      {"operation", std::string(shell::to_string(p.op))},
+                      {"faces_before", p.faces_before},
+                      {"faces_after", p.faces_after},
+                      {"tried", p.tried},
+                      {"accepted", p.accepted},
+                      {"rejected", total},
+                      {"rejected_by_reason", rejected},
+                      {"batches", p.batches},
+                      {"seconds", p.seconds}});
+  }
+  return {{"faces_before", c.faces_before},
+          {"faces_after", c.faces_after},
+          {"vertices_before", c.vertices_before},
+          {"vertices_after", c.vertices_after},
+          {"epsilon", c.epsilon},
+          {"max_distance", c.max_distance},
+          {"rounds", c.rounds},
+          {"seconds", c.seconds},
+          {"passes", passes}};
+}
+
 } // namespace
 
 Command add_shell_command(CLI::App& root) {
@@ -47,6 +82,7 @@ Command add_shell_command(CLI::App& root) {
     bool no_coarsen = false;
     std::string format = "ply";
     shell::ShellOptions shell;
+    shell::CoarsenOptions coarsen;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = root.add_subcommand("shell", "Build the bijective prismatic shell of a surface and its vertex map");
@@ -54,8 +90,17 @@ Command add_shell_command(CLI::App& root) {
   cmd->add_option("-o,--output", o->out_dir, "Output directory (created if missing)")->required();
   cmd->add_flag("--debug-invariants", o->debug_invariants,
                 "Re-check every shell invariant globally after each stage (slow; fails with exit code 3)");
-  cmd->add_flag("--no-coarsen", o->no_coarsen,
-                "Do not coarsen the shell (currently the default: coarsening is not implemented yet)");
+  cmd->add_flag("--no-coarsen", o->no_coarsen, "Write the shell as built, without coarsening");
+  auto* eps = cmd->add_option("--epsilon", o->coarsen.epsilon,
+                              "Distance bound for coarsening, relative to the bbox diagonal")
+                  ->check(CLI::PositiveNumber)
+                  ->capture_default_str();
+  cmd->add_option("--epsilon-abs", o->coarsen.epsilon_abs, "Distance bound for coarsening, absolute")
+      ->check(CLI::PositiveNumber)
+      ->excludes(eps);
+  cmd->add_option("--coarsen-rounds", o->coarsen.max_rounds, "Maximum coarsening rounds")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--format", o->format, "Surface file format")->check(CLI::IsMember({"ply", "obj"}))->capture_default_str();
   cmd->add_option("--thickness", o->shell.extrusion.target_thickness,
                   "Target pillar length on each side, relative to the bbox diagonal")
@@ -80,7 +125,6 @@ Command add_shell_command(CLI::App& root) {
             const auto& st = built.stats;
             const auto& s = built.shell;
             report["shell"] = stats_json(st);
-            report["shell"]["coarsened"] = false;
             report["shell"]["prisms"] = s.num_prisms();
             report["shell"]["seconds"] = {{"isolation_and_directions", st.seconds_isolation},
                                           {"initial_layer", st.seconds_initial},
@@ -100,6 +144,26 @@ Command add_shell_command(CLI::App& root) {
                           "{:.6g}, {} of {} vertices reached it)",
                           s.num_prisms(), st.singular_vertices, st.min_thickness, st.mean_thickness, st.target_pillar,
                           st.vertices_at_target, s.num_vertices());
+
+            report["shell"]["coarsened"] = !o->no_coarsen;
+            if (!o->no_coarsen) {
+              StageTimer t(&report, "shell coarsen");
+              // --debug-invariants: the global check after every pass.
+              o->coarsen.debug_invariants = o->debug_invariants;
+              o->coarsen.target_pillar = o->shell.extrusion.target_thickness;
+              o->coarsen.singular_dot = o->shell.extrusion.singular_dot;
+              const auto c = shell::coarsen_shell(built.shell, o->coarsen);
+              report["coarsen"] = coarsen_json(c);
+              // The written shell is the coarse one (vertices renumbered).
+              report["shell"]["prisms"] = s.num_prisms();
+              singular_ids.clear();
+              for (int v = 0; v < s.num_vertices(); ++v)
+                if (s.singular[v]) singular_ids.push_back(v);
+              report["shell"]["singular_vertex_ids"] = singular_ids;
+              logger().info("coarsen: {} -> {} faces ({:.1f}x) in {:.2f} s, max distance {:.6g} (epsilon {:.6g})",
+                            c.faces_before, c.faces_after, double(c.faces_before) / std::max(1, c.faces_after),
+                            c.seconds, c.max_distance, c.epsilon);
+            }
 
             std::vector<io::VertexMapRecord> map(s.points.size());
             for (std::size_t i = 0; i < s.points.size(); ++i)

@@ -1,0 +1,77 @@
+#pragma once
+// Coarsening of a valid shell by local operations under a distance bound
+// (DESIGN.md §3.2; paper §4, App. B). Linear middle surface by default; the
+// curved fit plugs in through MiddleFit (middle_fit.hpp).
+//
+// Rounds of passes: collapse (shortest middle edge first), flip (valence
+// gain), smooth (every vertex once: pan / rotate / zoom), split (edges longer
+// than split_factor x the mean edge, longest first). Rounds stop when a
+// round's collapse pass accepts nothing, when a round removes less than
+// min_round_gain of the faces, or after max_rounds.
+//
+// Every operation is a transaction (operations.hpp -> star_invariants.hpp ->
+// ShellEditor::commit). The scheduler batches non-overlapping stars (no
+// shared vertex) in priority order, checks a batch in parallel (oneTBB) and
+// commits it sequentially in that order, so the result does not depend on
+// the thread count.
+//
+// Guarantees after coarsen_shell (on a valid input shell): invariants 1-3 of
+// DESIGN.md §2 hold (exact); every constraint point p satisfies
+// ||p - middle(Π(p))|| < epsilon; s.points[i].image is Π(p_i); tracked sets
+// contain every input face meeting the prism. The shell has no dead entries.
+#include "curvetet/shell/middle_fit.hpp"
+#include "curvetet/shell/shell.hpp"
+#include "curvetet/shell/star.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace curvetet::shell {
+
+struct CoarsenOptions {
+  double epsilon = 0.01;       // distance bound, relative to the input bbox diagonal
+  double epsilon_abs = 0;      // absolute override when > 0
+  double quality_bound = 30;   // MIPS of new middle triangles may reach max(old, this)
+  double split_factor = 3.0;   // split edges longer than this x mean edge length (0: never)
+  double target_pillar = 0.02; // zoom target, relative to the diagonal
+  double singular_dot = 1e-3;  // as ExtrusionOptions::singular_dot
+  int max_rounds = 10;
+  double min_round_gain = 0.01; // stop when a round removes fewer faces than this fraction
+  bool debug_invariants = false; // global check (invariants 1-3, distance, map) after every pass
+};
+
+struct PassStats {
+  OpKind op = OpKind::collapse;
+  int round = 0;
+  long long tried = 0, accepted = 0, batches = 0;
+  std::array<long long, kRejectionCount> rejected{};
+  int faces_before = 0, faces_after = 0;
+  double seconds = 0;
+};
+
+struct CoarsenStats {
+  int faces_before = 0, faces_after = 0;
+  int vertices_before = 0, vertices_after = 0;
+  double epsilon = 0;        // absolute
+  double max_distance = 0;   // over all constraint points at the end
+  int rounds = 0;
+  double seconds = 0;
+  std::vector<PassStats> passes;
+};
+
+// Coarsens s in place. `fit` defaults to the linear middle.
+CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& options = {}, const MiddleFit* fit = nullptr);
+
+// Whole-map verification (tests, --debug-invariants, report).
+struct MapCheck {
+  double max_distance = 0;   // max ||p - middle(image(p))|| over s.points
+  int worst_point = -1;
+  int points_outside = 0;    // images not inside their prism (Π(p) recomputed differs)
+  double max_area_error = 0; // max over prisms |sum of image areas - 1|
+  double min_piece_area = 0; // smallest signed image piece (>= -1e-12 means positive)
+  int worst_prism = -1;
+};
+MapCheck check_map(const Shell& s);
+
+} // namespace curvetet::shell

@@ -1,0 +1,65 @@
+#include "curvetet/shell/coarsen.hpp"
+#include "curvetet/shell/prism_geometry.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace curvetet::shell {
+
+MapCheck check_map(const Shell& s) {
+  MapCheck out;
+  // Distance and consistency of every stored image.
+  const int P = static_cast<int>(s.points.size());
+  std::vector<double> dist(P, 0);
+  std::vector<char> outside(P, 0);
+  tbb::parallel_for(0, P, [&](int i) {
+    const auto& p = s.points[i];
+    if (p.image.prism < 0 || p.image.prism >= s.num_prisms()) {
+      outside[i] = 1;
+      dist[i] = std::numeric_limits<double>::infinity();
+      return;
+    }
+    const PrismGeom g = prism_geom(s, p.image.prism);
+    const auto uv = project_in(g, p.position, 1e-9);
+    outside[i] = !uv || std::abs((*uv)[0] - p.image.u) > 1e-9 || std::abs((*uv)[1] - p.image.v) > 1e-9;
+    const Vec3 x = (1 - p.image.u - p.image.v) * g.middle[0] + p.image.u * g.middle[1] + p.image.v * g.middle[2];
+    dist[i] = (x - p.position).norm();
+  });
+  for (int i = 0; i < P; ++i) {
+    out.points_outside += outside[i];
+    if (dist[i] > out.max_distance || out.worst_point < 0) {
+      out.max_distance = std::max(out.max_distance, dist[i]);
+      if (dist[i] >= out.max_distance) out.worst_point = i;
+    }
+  }
+  // Bijectivity: the images of the tracked faces tile each middle triangle.
+  const int F = s.num_prisms();
+  std::vector<double> err(F, 0), piece(F, 0);
+  tbb::parallel_for(0, F, [&](int f) {
+    const PrismGeom g = prism_geom(s, f);
+    double area = 0, min_piece = std::numeric_limits<double>::infinity();
+    for (int t : s.tracked[f]) {
+      const auto& tri = s.input.faces[t];
+      const auto a = image_area(g, s.input.vertices[tri[0]], s.input.vertices[tri[1]], s.input.vertices[tri[2]]);
+      area += a.area;
+      min_piece = std::min(min_piece, a.min_piece);
+    }
+    err[f] = std::abs(area - 1);
+    piece[f] = min_piece == std::numeric_limits<double>::infinity() ? 0 : min_piece;
+  });
+  out.min_piece_area = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < F; ++f) {
+    if (err[f] > out.max_area_error) {
+      out.max_area_error = err[f];
+      out.worst_prism = f;
+    }
+    out.min_piece_area = std::min(out.min_piece_area, piece[f]);
+  }
+  if (F == 0) out.min_piece_area = 0;
+  return out;
+}
+
+} // namespace curvetet::shell

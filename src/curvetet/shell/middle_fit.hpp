@@ -1,0 +1,41 @@
+#pragma once
+// The extension point "fit and check the curved middle of these new
+// triangles" (DESIGN.md §3.2, paper §4.1). Every operation's candidate goes
+// through MiddleFit::fit_and_check once (it is one entry of the invariant
+// list), and the distance invariant evaluates the middle surface only through
+// MiddleFit::evaluate, so a curved fit plugs in here without touching the
+// operations.
+//
+// LinearMiddle (this issue): the middle surface is the flat triangles of the
+// shell's middle vertices; nothing to fit, nothing to certify.
+// A curved fit would: sample the new prisms' middle triangles, map the
+// samples to the input by Π⁻¹ (fiber_hit on the candidate's tracked faces),
+// solve the least-squares control points (top/bottom fixed), certify det J > 0
+// with Bézier coefficients, and store the control points in the candidate for
+// evaluate() and the commit.
+#include "curvetet/shell/star.hpp"
+
+namespace curvetet::shell {
+
+class ShellEditor;
+
+class MiddleFit {
+ public:
+  virtual ~MiddleFit() = default;
+  // Fits the middle of c's new triangles (c.geoms, c.tracked are filled) and
+  // checks the result (curved positivity). false = reject (curved_fit).
+  virtual bool fit_and_check(const ShellEditor& editor, StarCandidate& c) const = 0;
+  // The point of new prism k's middle surface at parameters (u, v).
+  virtual Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const = 0;
+};
+
+class LinearMiddle final : public MiddleFit {
+ public:
+  bool fit_and_check(const ShellEditor&, StarCandidate&) const override { return true; }
+  Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const override {
+    const auto& m = c.geoms[k].middle;
+    return (1 - u - v) * m[0] + u * m[1] + v * m[2];
+  }
+};
+
+} // namespace curvetet::shell

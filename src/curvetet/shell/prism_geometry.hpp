@@ -1,0 +1,66 @@
+#pragma once
+// One prism as plain data (its 9 corner positions and 3 global vertex ids),
+// and the per-prism geometry the coarsening checks need. Works the same for
+// a prism of the shell and for a candidate prism an operation proposes, so
+// the operations never copy the shell (STYLE.md 1).
+//
+// Conventions (shell.hpp, prism_tets.hpp): corners k = 0,1,2 of the face are
+// counter-clockwise seen from the top; slab corner c < 3 is the lower corner
+// k = c, c >= 3 the upper corner of k = c - 3. A pillar is zero exactly when
+// its ends are bitwise equal; tets holding a zero pillar are skipped.
+// Decisions (positivity, meets, section) are exact (geometry/predicates.hpp,
+// shell/exact_dot.hpp); projection and parametric areas are double.
+#include "curvetet/shell/invariants.hpp"
+#include "curvetet/shell/shell.hpp"
+
+#include <array>
+#include <optional>
+
+namespace curvetet::shell {
+
+struct PrismGeom {
+  Tri ids{};                         // global vertex ids (decide the canonical split)
+  std::array<Vec3, 3> bottom, middle, top;
+
+  const Vec3& lower(Slab s, int k) const { return s == Slab::bottom ? bottom[k] : middle[k]; }
+  const Vec3& upper(Slab s, int k) const { return s == Slab::bottom ? middle[k] : top[k]; }
+  const Vec3& corner(Slab s, int c) const { return c < 3 ? lower(s, c) : upper(s, c - 3); }
+  bool zero_pillar(Slab s, int k) const { return lower(s, k) == upper(s, k); }
+};
+
+PrismGeom prism_geom(const Shell& s, int prism);
+
+// Invariant 1 on one prism: all 12 tets of both slabs positive (zero pillars
+// skipped). Same rule as shell::prism_positive.
+bool positive(const PrismGeom& g);
+
+// Exact: the closed triangle (a, b, c) meets the closed prism (union of the
+// canonical tets of both slabs).
+bool triangle_meets_prism(const PrismGeom& g, const Vec3& a, const Vec3& b, const Vec3& c);
+
+// Exact section condition of input triangle (a, b, c) in this prism (same
+// rule as shell::prism_section_valid without its containment part): for each
+// non-zero pillar whose direction has a non-positive dot product with the
+// triangle's normal, the triangle meets none of the tets holding that pillar.
+bool section_condition(const PrismGeom& g, const Vec3& a, const Vec3& b, const Vec3& c);
+
+// Π restricted to the prism: (u, v) of the fiber through p, and its depth
+// (min barycentric of p in the best tet; >= -tol means inside). nullopt when
+// p is outside by more than tol.
+std::optional<std::array<double, 2>> project_in(const PrismGeom& g, const Vec3& p, double tol, double* depth = nullptr);
+
+// Π⁻¹ restricted to the prism: where the fiber of (u, v) meets triangle
+// (a, b, c), if it does (within a 1e-9 barycentric slack).
+std::optional<Vec3> fiber_hit(const PrismGeom& g, double u, double v, const Vec3& a, const Vec3& b, const Vec3& c);
+
+// Parametric image of triangle (a, b, c) under Π in this prism: the triangle
+// is clipped to each canonical tet and the pieces' (u, v) shadows measured.
+// area = sum of the signed piece areas, in units of the middle triangle
+// (1 = the whole triangle); min_piece = smallest signed piece area (same
+// units; < 0 means a piece maps with reversed orientation).
+struct ImageArea {
+  double area = 0, min_piece = 0;
+};
+ImageArea image_area(const PrismGeom& g, const Vec3& a, const Vec3& b, const Vec3& c);
+
+} // namespace curvetet::shell

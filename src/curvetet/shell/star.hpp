@@ -1,0 +1,66 @@
+#pragma once
+// A candidate edit of the shell: the "star" an operation replaces, as plain
+// arrays (STYLE.md 1). An operation fills the proposal part; the invariant
+// list (star_invariants.hpp) fills the derived part while checking it; the
+// editor (shell_editor.hpp) commits it or it is dropped, the shell untouched.
+//
+// Every operation here (collapse, flip, split, smooth) keeps the outer
+// boundary of its star (the pillar quads over the link edges) unchanged:
+// only the prisms inside it and the positions of interior vertices change.
+#include "curvetet/shell/prism_geometry.hpp"
+#include "curvetet/shell/shell.hpp"
+
+#include <cstdint>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+namespace curvetet::shell {
+
+// Placeholder id of the vertex a split creates; it gets a real id (larger
+// than every existing one, so canonical splits agree) when committed.
+inline constexpr int kNewVertex = std::numeric_limits<int>::max() - 1;
+
+enum class OpKind : std::uint8_t { collapse, flip, split, smooth };
+std::string_view to_string(OpKind k);
+
+// Why a candidate was dropped. Counted per pass in the report.
+enum class Rejection : std::uint8_t {
+  topology,          // link condition, valence, duplicate edge, no candidate
+  singular_adjacent, // would make two singular vertices adjacent
+  quality,           // middle triangles worse than allowed (ranking rule)
+  prism_positivity,  // invariant 1 on the new prisms
+  coverage,          // a tracked input triangle leaves the new prisms
+  section,           // invariant 2 on the new prisms
+  caps_intersection, // invariant 3: new caps against all caps
+  curved_fit,        // the middle-surface fit of the new triangles failed
+  distance,          // a constraint point would map farther than epsilon
+  batch_conflict,    // new caps cross caps committed earlier in the same batch
+  count_
+};
+inline constexpr int kRejectionCount = static_cast<int>(Rejection::count_);
+std::string_view to_string(Rejection r);
+
+struct StarCandidate {
+  OpKind op = OpKind::collapse;
+  // ---- proposal (filled by the operation) ----
+  std::vector<int> removed;  // prisms replaced (sorted)
+  std::vector<Tri> faces;    // the new faces (ccw from the top); may use kNewVertex
+  // Vertices whose positions change (or kNewVertex) and their new B, V, T.
+  std::vector<int> moved;
+  std::vector<Vec3> moved_bottom, moved_middle, moved_top;
+  int removed_vertex = -1;   // collapse: the vertex that disappears
+  // ---- derived (filled by the invariant list) ----
+  std::vector<PrismGeom> geoms;             // per new face
+  std::vector<int> old_tracked;             // union of the removed prisms' tracked faces
+  std::vector<std::vector<int>> tracked;    // per new face, sorted
+  struct Image {
+    int point;     // id into Shell::points
+    int local;     // index into faces
+    double u, v;
+  };
+  std::vector<Image> images;                // new Π of the points of removed prisms
+  double max_distance = 0;                  // over `images`
+};
+
+} // namespace curvetet::shell

@@ -1,0 +1,362 @@
+#include "curvetet/shell/star_invariants.hpp"
+
+#include "curvetet/geometry/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace curvetet::shell {
+
+using geometry::orient3d;
+
+std::string_view to_string(OpKind k) {
+  switch (k) {
+    case OpKind::collapse: return "collapse";
+    case OpKind::flip: return "flip";
+    case OpKind::split: return "split";
+    case OpKind::smooth: return "smooth";
+  }
+  return "?";
+}
+
+std::string_view to_string(Rejection r) {
+  switch (r) {
+    case Rejection::topology: return "topology";
+    case Rejection::singular_adjacent: return "singular_adjacent";
+    case Rejection::quality: return "quality";
+    case Rejection::prism_positivity: return "prism_positivity";
+    case Rejection::coverage: return "coverage";
+    case Rejection::section: return "section";
+    case Rejection::caps_intersection: return "caps_intersection";
+    case Rejection::curved_fit: return "curved_fit";
+    case Rejection::distance: return "distance";
+    case Rejection::batch_conflict: return "batch_conflict";
+    case Rejection::count_: break;
+  }
+  return "?";
+}
+
+double mips(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  if (!(area > 0)) return std::numeric_limits<double>::infinity();
+  return ((b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm()) / (4 * std::sqrt(3.0) * area);
+}
+
+namespace {
+
+bool boxes_overlap(const geometry::Box3& a, const geometry::Box3& b) {
+  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
+}
+
+geometry::Box3 box_of(const std::array<Vec3, 3>& p) { return geometry::bounding_box(p[0], p[1], p[2]); }
+
+geometry::Box3 prism_box(const PrismGeom& g) {
+  geometry::Box3 b{g.bottom[0], g.bottom[0]};
+  for (const auto* arr : {&g.bottom, &g.middle, &g.top})
+    for (const auto& p : *arr) {
+      b.min = b.min.cwiseMin(p);
+      b.max = b.max.cwiseMax(p);
+    }
+  return b;
+}
+
+// A cap triangle with merged vertex ids: bottom v -> 2v, top v -> 2v + 1, or
+// 2v when the pillar of v is pinched (B[v] == T[v]: one point).
+struct CapTri {
+  std::array<std::int64_t, 3> ids;
+  std::array<Vec3, 3> p;
+  std::array<bool, 3> pinched;
+  std::int64_t prism;  // identity of the prism (for the bottom/top pair rule)
+  bool all_pinched;
+};
+
+CapTri make_cap(const std::array<int, 3>& t, const std::array<Vec3, 3>& bottom, const std::array<Vec3, 3>& top,
+                bool is_top, std::int64_t prism) {
+  CapTri c;
+  c.all_pinched = true;
+  for (int k = 0; k < 3; ++k) {
+    c.pinched[k] = bottom[k] == top[k];
+    c.ids[k] = 2 * std::int64_t(t[k]) + (is_top && !c.pinched[k] ? 1 : 0);
+    c.p[k] = is_top ? top[k] : bottom[k];
+    c.all_pinched = c.all_pinched && c.pinched[k];
+  }
+  c.prism = prism;
+  return c;
+}
+
+CapTri shell_cap(const Shell& s, int cap) {
+  const Tri& t = s.faces[cap / 2];
+  std::array<Vec3, 3> b, tp;
+  for (int k = 0; k < 3; ++k) {
+    b[k] = s.bottom[t[k]];
+    tp[k] = s.top[t[k]];
+  }
+  return make_cap(t, b, tp, cap % 2 == 1, cap / 2);
+}
+
+CapTri new_cap(const StarCandidate& c, int k, bool is_top) {
+  const auto& g = c.geoms[k];
+  return make_cap(g.ids, g.bottom, g.top, is_top, -1 - k);
+}
+
+// Improper intersection of two closed triangles that share the corners
+// a[ia[i]] == b[ib[i]], i < shared (same rule as check::faces_intersect).
+bool improper(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, int shared, const int ia[3],
+              const int ib[3]) {
+  if (shared == 0) return geometry::triangles_intersect(a[0], a[1], a[2], b[0], b[1], b[2]);
+  if (shared == 1) {
+    const int i = ia[0], j = ib[0];
+    return geometry::segment_triangle_intersect(a[(i + 1) % 3], a[(i + 2) % 3], b[0], b[1], b[2]) ||
+           geometry::segment_triangle_intersect(b[(j + 1) % 3], b[(j + 2) % 3], a[0], a[1], a[2]);
+  }
+  if (shared == 2) {
+    const Vec3 &u = a[ia[0]], &v = a[ia[1]];
+    const Vec3 &pa = a[3 - ia[0] - ia[1]], &pb = b[3 - ib[0] - ib[1]];
+    if (orient3d(u, v, pa, pb) != 0) return false;
+    return geometry::coplanar_orientation(u, v, pa, pb) > 0;
+  }
+  return true; // the same triangle twice
+}
+
+bool caps_intersect(const CapTri& a, const CapTri& b) {
+  if (a.prism == b.prism && a.all_pinched) return false; // coincident caps of a flat prism
+  int shared = 0, ia[3], ib[3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (a.ids[i] == b.ids[j]) {
+        ia[shared] = i;
+        ib[shared] = j;
+        ++shared;
+      }
+  return improper(a.p, b.p, shared, ia, ib);
+}
+
+// An input triangle against a cap: they may touch only at a pinched cap
+// corner that is (bitwise) one of the triangle's corners.
+bool input_crosses_cap(const std::array<Vec3, 3>& t, const CapTri& cap) {
+  int shared = 0, ia[3], ib[3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (cap.pinched[j] && t[i] == cap.p[j]) {
+        ia[shared] = i;
+        ib[shared] = j;
+        ++shared;
+      }
+  return improper(t, cap.p, shared, ia, ib);
+}
+
+std::array<Vec3, 3> input_tri(const Shell& s, int f) {
+  const auto& t = s.input.faces[f];
+  return {s.input.vertices[t[0]], s.input.vertices[t[1]], s.input.vertices[t[2]]};
+}
+
+// ---------------------------------------------------------------------------
+
+class SingularIsolation final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::singular_adjacent; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    const auto& sing = ctx.editor.shell().singular;
+    auto singular = [&](int v) { return v != kNewVertex && sing[v]; };
+    for (const auto& f : c.faces)
+      for (int k = 0; k < 3; ++k)
+        if (singular(f[k]) && singular(f[(k + 1) % 3])) return false;
+    return true;
+  }
+};
+
+class MiddleQuality final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::quality; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    const auto& s = ctx.editor.shell();
+    double old_max = 0;
+    for (int f : c.removed) {
+      const auto& t = s.faces[f];
+      old_max = std::max(old_max, mips(s.middle[t[0]], s.middle[t[1]], s.middle[t[2]]));
+    }
+    const double bound = std::max(old_max, ctx.quality_bound);
+    for (const auto& t : c.faces) {
+      const auto& e = ctx.editor;
+      if (!(mips(e.middle(c, t[0]), e.middle(c, t[1]), e.middle(c, t[2])) <= bound)) return false;
+    }
+    return true;
+  }
+};
+
+class PrismPositivity final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::prism_positivity; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    c.geoms.resize(c.faces.size());
+    for (std::size_t k = 0; k < c.faces.size(); ++k) c.geoms[k] = ctx.editor.candidate_geom(c, static_cast<int>(k));
+    for (const auto& g : c.geoms)
+      if (!positive(g)) return false;
+    return true;
+  }
+};
+
+class Coverage final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::coverage; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    const Shell& s = ctx.editor.shell();
+    c.old_tracked.clear();
+    for (int f : c.removed) c.old_tracked.insert(c.old_tracked.end(), s.tracked[f].begin(), s.tracked[f].end());
+    std::sort(c.old_tracked.begin(), c.old_tracked.end());
+    c.old_tracked.erase(std::unique(c.old_tracked.begin(), c.old_tracked.end()), c.old_tracked.end());
+    const int K = static_cast<int>(c.faces.size());
+    std::vector<geometry::Box3> boxes(K);
+    std::vector<CapTri> caps;
+    for (int k = 0; k < K; ++k) {
+      boxes[k] = prism_box(c.geoms[k]);
+      caps.push_back(new_cap(c, k, false));
+      caps.push_back(new_cap(c, k, true));
+    }
+    c.tracked.assign(K, {});
+    for (int t : c.old_tracked) {
+      const auto tri = input_tri(s, t);
+      const auto tb = box_of(tri);
+      bool landed = false;
+      for (int k = 0; k < K; ++k) {
+        if (!boxes_overlap(tb, boxes[k])) continue;
+        if (triangle_meets_prism(c.geoms[k], tri[0], tri[1], tri[2])) {
+          c.tracked[k].push_back(t);
+          landed = true;
+        }
+      }
+      if (!landed) return false;
+      for (const auto& cap : caps)
+        if (boxes_overlap(tb, box_of(cap.p)) && input_crosses_cap(tri, cap)) return false;
+    }
+    return true;
+  }
+};
+
+class Section final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::section; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    const Shell& s = ctx.editor.shell();
+    for (std::size_t k = 0; k < c.faces.size(); ++k)
+      for (int t : c.tracked[k]) {
+        const auto tri = input_tri(s, t);
+        if (!section_condition(c.geoms[k], tri[0], tri[1], tri[2])) return false;
+      }
+    return true;
+  }
+};
+
+class CapsIntersection final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::caps_intersection; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    const Shell& s = ctx.editor.shell();
+    const int K = static_cast<int>(c.faces.size());
+    std::vector<CapTri> caps;
+    for (int k = 0; k < K; ++k) {
+      caps.push_back(new_cap(c, k, false));
+      caps.push_back(new_cap(c, k, true));
+    }
+    for (std::size_t i = 0; i < caps.size(); ++i)
+      for (std::size_t j = i + 1; j < caps.size(); ++j)
+        if (boxes_overlap(box_of(caps[i].p), box_of(caps[j].p)) && caps_intersect(caps[i], caps[j])) return false;
+    for (const auto& cap : caps) {
+      const auto box = box_of(cap.p);
+      for (int other : ctx.editor.grid().query(box)) {
+        const int f = other / 2;
+        if (!ctx.editor.face_alive(f) || std::binary_search(c.removed.begin(), c.removed.end(), f)) continue;
+        if (!boxes_overlap(box, ctx.editor.cap_box(other))) continue;
+        if (caps_intersect(cap, shell_cap(s, other))) return false;
+      }
+    }
+    return true;
+  }
+};
+
+class CurvedFit final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::curved_fit; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override { return ctx.fit.fit_and_check(ctx.editor, c); }
+};
+
+class Distance final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::distance; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection& why) const override {
+    const Shell& s = ctx.editor.shell();
+    c.images.clear();
+    c.max_distance = 0;
+    for (int f : c.removed)
+      for (int p : ctx.editor.points_in(f)) {
+        const auto& pt = s.points[p];
+        int best_k = -1;
+        double best_depth = -std::numeric_limits<double>::infinity();
+        std::array<double, 2> best_uv{};
+        for (std::size_t k = 0; k < c.faces.size(); ++k) {
+          if (!std::binary_search(c.tracked[k].begin(), c.tracked[k].end(), pt.input_face)) continue;
+          double depth;
+          const auto uv = project_in(c.geoms[k], pt.position, std::numeric_limits<double>::infinity(), &depth);
+          if (uv && depth > best_depth) {
+            best_depth = depth;
+            best_k = static_cast<int>(k);
+            best_uv = *uv;
+          }
+        }
+        // Numerically outside every new prism: treated as not covered.
+        if (best_k < 0 || best_depth < -1e-9) {
+          why = Rejection::coverage;
+          return false;
+        }
+        const Vec3 x = ctx.fit.evaluate(c, best_k, best_uv[0], best_uv[1]);
+        const double d = (x - pt.position).norm();
+        if (!(d < ctx.epsilon)) return false;
+        c.max_distance = std::max(c.max_distance, d);
+        c.images.push_back({p, best_k, best_uv[0], best_uv[1]});
+      }
+    return true;
+  }
+};
+
+} // namespace
+
+InvariantList default_star_invariants() {
+  InvariantList l;
+  l.push_back(std::make_unique<SingularIsolation>());
+  l.push_back(std::make_unique<MiddleQuality>());
+  l.push_back(std::make_unique<PrismPositivity>());
+  l.push_back(std::make_unique<Coverage>());
+  l.push_back(std::make_unique<Section>());
+  l.push_back(std::make_unique<CapsIntersection>());
+  l.push_back(std::make_unique<CurvedFit>());
+  l.push_back(std::make_unique<Distance>());
+  return l;
+}
+
+std::optional<Rejection> check_candidate(const InvariantList& list, const StarContext& ctx, StarCandidate& c) {
+  for (const auto& inv : list) {
+    Rejection why = inv->reason();
+    if (!inv->holds(ctx, c, why)) return why;
+  }
+  return std::nullopt;
+}
+
+bool caps_free_of_batch(const StarContext& ctx, const StarCandidate& c, int batch) {
+  const Shell& s = ctx.editor.shell();
+  for (std::size_t k = 0; k < c.faces.size(); ++k)
+    for (int side = 0; side < 2; ++side) {
+      const CapTri cap = new_cap(c, static_cast<int>(k), side == 1);
+      const auto box = box_of(cap.p);
+      for (int other : ctx.editor.grid().query(box)) {
+        const int f = other / 2;
+        if (!ctx.editor.face_alive(f) || ctx.editor.batch_of(f) != batch) continue;
+        if (!boxes_overlap(box, ctx.editor.cap_box(other))) continue;
+        if (caps_intersect(cap, shell_cap(s, other))) return false;
+      }
+    }
+  return true;
+}
+
+} // namespace curvetet::shell

@@ -1,0 +1,65 @@
+#pragma once
+// The invariant list run on every candidate (STYLE.md 2; DESIGN.md §2 items
+// 1-4 restricted to the new prisms). Each invariant is a small named unit;
+// an operation never checks anything itself beyond its topology.
+//
+// In list order (cheap first; later ones use what earlier ones derived):
+//  SingularIsolation  no new edge joins two singular vertices
+//  MiddleQuality      (ranking rule) max MIPS of the new middle triangles <=
+//                     max(old max, bound)
+//  PrismPositivity    invariant 1 on the new prisms (fills c.geoms)
+//  Coverage           every input face tracked by a removed prism meets some
+//                     new prism (fills c.tracked: the faces meeting it) and
+//                     crosses no new cap (contact only at a pinched vertex).
+//                     Since the star's outer quads are unchanged, this is
+//                     "the tracked faces lie in the union of the new prisms"
+//  Section            invariant 2 for each new prism and its tracked faces
+//  CapsIntersection   invariant 3: new caps against each other and against
+//                     every live cap outside the star (grid candidates)
+//  CurvedFit          MiddleFit::fit_and_check (no-op for a linear middle)
+//  Distance           every constraint point mapped into a removed prism gets
+//                     its new Π in a new prism tracking its face (else:
+//                     coverage) and ||p - middle(Π(p))|| < epsilon
+//                     (fills c.images)
+#include "curvetet/shell/middle_fit.hpp"
+#include "curvetet/shell/shell_editor.hpp"
+#include "curvetet/shell/star.hpp"
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace curvetet::shell {
+
+struct StarContext {
+  const ShellEditor& editor;
+  const MiddleFit& fit;
+  double epsilon;        // absolute distance bound
+  double quality_bound;  // MIPS bound of the ranking rule
+};
+
+class StarInvariant {
+ public:
+  virtual ~StarInvariant() = default;
+  virtual Rejection reason() const = 0;
+  // false = the candidate violates it; `why` (preset to reason()) may name
+  // a more precise reason. May fill derived fields of c.
+  virtual bool holds(const StarContext& ctx, StarCandidate& c, Rejection& why) const = 0;
+};
+
+using InvariantList = std::vector<std::unique_ptr<StarInvariant>>;
+InvariantList default_star_invariants();
+
+// Runs the list in order; the first failure's reason, or nullopt (accepted).
+std::optional<Rejection> check_candidate(const InvariantList& list, const StarContext& ctx, StarCandidate& c);
+
+// Commit-time check: c's new caps against the caps created by earlier
+// commits of the same batch (stamp `batch`), which the parallel check could
+// not see. true = no intersection.
+bool caps_free_of_batch(const StarContext& ctx, const StarCandidate& c, int batch);
+
+// MIPS energy of a triangle: (|e0|^2+|e1|^2+|e2|^2) / (4 sqrt(3) area),
+// 1 for equilateral, +inf when degenerate. Ranking only (double).
+double mips(const Vec3& a, const Vec3& b, const Vec3& c);
+
+} // namespace curvetet::shell

@@ -1,0 +1,92 @@
+// Coarsening on real meshes from ../shared/data (good, without features):
+// the global checker after every pass (--debug-invariants) on the small
+// ones, the distance bound and the bijectivity of the map at the end, and
+// identical output for 1 and 2 threads. Bigger sweeps: bench/.
+#include "tiny_meshes.hpp"
+
+#include "curvetet/core/threads.hpp"
+#include "curvetet/io/read_surface.hpp"
+#include "curvetet/shell/build.hpp"
+#include "curvetet/shell/coarsen.hpp"
+#include "curvetet/shell/invariants.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+using namespace curvetet;
+using namespace curvetet::shell;
+
+namespace {
+
+mesh::SurfaceMesh load(const std::string& name) {
+  return mesh::to_surface_mesh(io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/" + name));
+}
+
+void expect_valid_coarse_shell(const Shell& s, const CoarsenStats& st) {
+  EXPECT_TRUE(check_shell(s).empty());
+  const auto m = check_map(s);
+  EXPECT_LT(m.max_distance, st.epsilon) << "point " << m.worst_point;
+  EXPECT_EQ(m.points_outside, 0);
+  EXPECT_LE(m.max_area_error, 1e-9) << "prism " << m.worst_prism;
+  EXPECT_GE(m.min_piece_area, -1e-12);
+  // Every input vertex is a constraint point with a stored image.
+  ASSERT_GE(s.points.size(), std::size_t(s.input.num_vertices()));
+}
+
+} // namespace
+
+// The global checker after every pass (throws on any violation).
+TEST(CoarsenModels, DebugInvariantsOnSmallModel) {
+  auto built = build_shell(load("thingi10k_288351.off"));
+  CoarsenOptions o;
+  o.debug_invariants = true;
+  const auto st = coarsen_shell(built.shell, o);
+  expect_valid_coarse_shell(built.shell, st);
+  EXPECT_LE(st.faces_after, st.faces_before + st.faces_before / 10);
+}
+
+TEST(CoarsenModels, DebugInvariantsOnSphere) {
+  auto built = build_shell(test::sphere(4));
+  CoarsenOptions o;
+  o.debug_invariants = true;
+  const auto st = coarsen_shell(built.shell, o);
+  expect_valid_coarse_shell(built.shell, st);
+  EXPECT_LT(st.faces_after * 4, st.faces_before);
+}
+
+TEST(CoarsenModels, SameResultForOneAndTwoThreads) {
+  const auto input = test::sphere(4);
+  Shell a = build_shell(input).shell, b = a;
+  CoarsenOptions o;
+  {
+    ThreadLimit one(1);
+    coarsen_shell(a, o);
+  }
+  {
+    ThreadLimit two(2);
+    coarsen_shell(b, o);
+  }
+  EXPECT_EQ(a.faces, b.faces);
+  EXPECT_EQ(a.tracked, b.tracked);
+  ASSERT_EQ(a.num_vertices(), b.num_vertices());
+  for (int v = 0; v < a.num_vertices(); ++v) {
+    EXPECT_EQ(a.bottom[v], b.bottom[v]);
+    EXPECT_EQ(a.middle[v], b.middle[v]);
+    EXPECT_EQ(a.top[v], b.top[v]);
+  }
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    EXPECT_EQ(a.points[i].image.prism, b.points[i].image.prism);
+    EXPECT_EQ(a.points[i].image.u, b.points[i].image.u);
+    EXPECT_EQ(a.points[i].image.v, b.points[i].image.v);
+  }
+}
+
+// Acceptance figure: >= 8x fewer faces on the bunny at epsilon = 1% with a
+// linear middle, valid shell, every input vertex within epsilon, bijective.
+TEST(CoarsenModels, BunnyReduction) {
+  auto built = build_shell(load("bunny_libigl.off"));
+  const auto st = coarsen_shell(built.shell, CoarsenOptions{});
+  EXPECT_GE(st.faces_before, 8 * st.faces_after);
+  expect_valid_coarse_shell(built.shell, st);
+}
