@@ -14,18 +14,6 @@ bool strictly_one_side(const std::array<Point3, 3>& p, const std::array<Point3, 
 
 } // namespace
 
-SharedCorners shared_corners(const std::array<int, 3>& a_ids, const std::array<int, 3>& b_ids) {
-  SharedCorners s;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (a_ids[i] == b_ids[j]) {
-        s.a[s.count] = i;
-        s.b[s.count] = j;
-        ++s.count;
-      }
-  return s;
-}
-
 bool triangles_intersect_improperly(const std::array<Point3, 3>& a, const std::array<Point3, 3>& b,
                                     const SharedCorners& shared) {
   if (shared.count == 0) {

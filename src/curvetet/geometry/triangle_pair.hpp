@@ -24,8 +24,19 @@ struct SharedCorners {
   int a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
 };
 
-// Corners with equal ids.
-SharedCorners shared_corners(const std::array<int, 3>& a_ids, const std::array<int, 3>& b_ids);
+// Corners with equal ids (any integer id type).
+template <class Id>
+SharedCorners shared_corners(const std::array<Id, 3>& a_ids, const std::array<Id, 3>& b_ids) {
+  SharedCorners s;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (a_ids[i] == b_ids[j]) {
+        s.a[s.count] = i;
+        s.b[s.count] = j;
+        ++s.count;
+      }
+  return s;
+}
 
 bool triangles_intersect_improperly(const std::array<Point3, 3>& a, const std::array<Point3, 3>& b,
                                     const SharedCorners& shared);

@@ -1,5 +1,7 @@
 #include "curvetet/shell/star_invariants.hpp"
 
+#include "curvetet/geometry/triangle_pair.hpp"
+
 #include "curvetet/geometry/predicates.hpp"
 
 #include <algorithm>
@@ -101,50 +103,23 @@ CapTri new_cap(const StarCandidate& c, int k, bool is_top) {
   return make_cap(g.ids, g.bottom, g.top, is_top, -1 - k);
 }
 
-// Improper intersection of two closed triangles that share the corners
-// a[ia[i]] == b[ib[i]], i < shared (same rule as check::faces_intersect).
-bool improper(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, int shared, const int ia[3],
-              const int ib[3]) {
-  if (shared == 0) return geometry::triangles_intersect(a[0], a[1], a[2], b[0], b[1], b[2]);
-  if (shared == 1) {
-    const int i = ia[0], j = ib[0];
-    return geometry::segment_triangle_intersect(a[(i + 1) % 3], a[(i + 2) % 3], b[0], b[1], b[2]) ||
-           geometry::segment_triangle_intersect(b[(j + 1) % 3], b[(j + 2) % 3], a[0], a[1], a[2]);
-  }
-  if (shared == 2) {
-    const Vec3 &u = a[ia[0]], &v = a[ia[1]];
-    const Vec3 &pa = a[3 - ia[0] - ia[1]], &pb = b[3 - ib[0] - ib[1]];
-    if (orient3d(u, v, pa, pb) != 0) return false;
-    return geometry::coplanar_orientation(u, v, pa, pb) > 0;
-  }
-  return true; // the same triangle twice
-}
-
 bool caps_intersect(const CapTri& a, const CapTri& b) {
   if (a.prism == b.prism && a.all_pinched) return false; // coincident caps of a flat prism
-  int shared = 0, ia[3], ib[3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (a.ids[i] == b.ids[j]) {
-        ia[shared] = i;
-        ib[shared] = j;
-        ++shared;
-      }
-  return improper(a.p, b.p, shared, ia, ib);
+  return geometry::triangles_intersect_improperly(a.p, b.p, geometry::shared_corners(a.ids, b.ids));
 }
 
 // An input triangle against a cap: they may touch only at a pinched cap
 // corner that is (bitwise) one of the triangle's corners.
 bool input_crosses_cap(const std::array<Vec3, 3>& t, const CapTri& cap) {
-  int shared = 0, ia[3], ib[3];
+  geometry::SharedCorners shared;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       if (cap.pinched[j] && t[i] == cap.p[j]) {
-        ia[shared] = i;
-        ib[shared] = j;
-        ++shared;
+        shared.a[shared.count] = i;
+        shared.b[shared.count] = j;
+        ++shared.count;
       }
-  return improper(t, cap.p, shared, ia, ib);
+  return geometry::triangles_intersect_improperly(t, cap.p, shared);
 }
 
 std::array<Vec3, 3> input_tri(const Shell& s, int f) {
