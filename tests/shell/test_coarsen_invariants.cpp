@@ -6,7 +6,7 @@
 //
 //        2
 //        | \          seen from the top (+z): counter-clockwise
-//        |   \
+//        |   \ .
 //        0 --- 1
 #include "curvetet/shell/shell_editor.hpp"
 #include "curvetet/shell/star_invariants.hpp"

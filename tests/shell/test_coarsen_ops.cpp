@@ -97,7 +97,9 @@ void expect_rejected_by_tiny_epsilon(Make&& make) {
           has_points = has_points || (x - pt.position).norm() >= 1e-9;
         }
       const auto why = check_candidate(list, ctx, c);
-      if (has_points) EXPECT_TRUE(why.has_value());
+      if (has_points) {
+        EXPECT_TRUE(why.has_value());
+      }
       by_distance += why == Rejection::distance;
     }
   EXPECT_GT(by_distance, 0);

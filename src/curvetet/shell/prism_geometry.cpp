@@ -135,7 +135,8 @@ std::optional<std::array<double, 2>> project_in(const PrismGeom& g, const Vec3& 
   return std::array<double, 2>{best_ref[0], best_ref[1]};
 }
 
-std::optional<Vec3> fiber_hit(const PrismGeom& g, double u, double v, const Vec3& a, const Vec3& b, const Vec3& c) {
+std::optional<Vec3> fiber_hit(const PrismGeom& g, double u, double v, const Vec3& a, const Vec3& b, const Vec3& c,
+                              double* depth) {
   const Vec3 n = (b - a).cross(c - a);
   const double area = n.squaredNorm();
   double best = -std::numeric_limits<double>::infinity();
@@ -160,10 +161,18 @@ std::optional<Vec3> fiber_hit(const PrismGeom& g, double u, double v, const Vec3
       };
       const Vec3 x0 = at(w0), x1 = at(w1);
       const double s0 = n.dot(x0 - a), s1 = n.dot(x1 - a);
-      if (s0 == s1) continue; // fiber parallel to the plane (or a point): no transversal hit
-      const double tau = s0 / (s0 - s1);
-      if (!(tau >= -1e-9 && tau <= 1 + 1e-9)) continue;
-      const Vec3 x = x0 + std::clamp(tau, 0.0, 1.0) * (x1 - x0);
+      Vec3 x;
+      if (s0 == s1) {
+        // A fiber reduced to a point (over a pinched pillar) or running in
+        // the plane: a hit only if that point is on the plane (to rounding).
+        if (std::abs(s0) > 1e-12 * std::sqrt(area) * (x0 - a).norm()) continue;
+        x = x0;
+      } else {
+        // Crossing parameter; ends on the plane up to rounding count.
+        const double tau = s0 / (s0 - s1);
+        if (!(tau >= -1e-9 && tau <= 1 + 1e-9)) continue;
+        x = x0 + std::clamp(tau, 0.0, 1.0) * (x1 - x0);
+      }
       const double lb = n.dot((x - a).cross(c - a)) / area, lc = n.dot((b - a).cross(x - a)) / area;
       const double d = std::min({1 - lb - lc, lb, lc});
       if (d > best) {
@@ -171,6 +180,7 @@ std::optional<Vec3> fiber_hit(const PrismGeom& g, double u, double v, const Vec3
         best_point = x;
       }
     }
+  if (depth) *depth = best;
   if (!(best >= -1e-9)) return std::nullopt;
   return best_point;
 }

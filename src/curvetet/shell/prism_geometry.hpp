@@ -50,8 +50,11 @@ bool section_condition(const PrismGeom& g, const Vec3& a, const Vec3& b, const V
 std::optional<std::array<double, 2>> project_in(const PrismGeom& g, const Vec3& p, double tol, double* depth = nullptr);
 
 // Π⁻¹ restricted to the prism: where the fiber of (u, v) meets triangle
-// (a, b, c), if it does (within a 1e-9 barycentric slack).
-std::optional<Vec3> fiber_hit(const PrismGeom& g, double u, double v, const Vec3& a, const Vec3& b, const Vec3& c);
+// (a, b, c), if it does (within a 1e-9 barycentric slack). `depth` receives
+// the hit's min barycentric coordinate in (a, b, c) (the deepest hit wins).
+// A fiber over a pinched pillar is a point: a hit when it lies on the plane.
+std::optional<Vec3> fiber_hit(const PrismGeom& g, double u, double v, const Vec3& a, const Vec3& b, const Vec3& c,
+                              double* depth = nullptr);
 
 // Parametric image of triangle (a, b, c) under Π in this prism: the triangle
 // is clipped to each canonical tet and the pieces' (u, v) shadows measured.
