@@ -63,6 +63,8 @@ Command add_poisson_command(CLI::App& root) {
             j["dofs"] = result.solution.num_dofs();
             j["dirichlet_dofs"] = result.num_dirichlet;
             j["quadrature_degree"] = result.quadrature_degree;
+            j["solver"] = result.solver_used == fem::LinearSolver::direct ? "SimplicialLDLT" : "CG+IncompleteCholesky";
+            j["cg_iterations"] = result.cg_iterations;
             j["volume"] = norms.volume;
             j["l2_error"] = norms.error;
             j["l2_relative_error"] = norms.error / norms.exact;

@@ -110,6 +110,22 @@ TEST(Poisson, CurvedBallGeometryBeatsStraightGeometry) {
   EXPECT_LT(errors[1], 0.1 * errors[0]); // measured 1.2e-4 vs 7.3e-3
 }
 
+TEST(Poisson, ConjugateGradientsAgreeWithTheDirectSolver) {
+  REQUIRE_GMSH();
+  mesh::TetMesh m = test::gmsh_mesh("ball", 0.5, 2);
+  ManufacturedSolution exact = franke_solution(tet_bounding_box(m));
+  PoissonOptions options;
+  options.solver = LinearSolver::direct;
+  PoissonResult direct = solve_poisson(m, manufactured_problem(exact), options);
+  options.solver = LinearSolver::conjugate_gradient;
+  PoissonResult cg = solve_poisson(m, manufactured_problem(exact), options);
+  EXPECT_EQ(direct.solver_used, LinearSolver::direct);
+  EXPECT_EQ(cg.solver_used, LinearSolver::conjugate_gradient);
+  EXPECT_GT(cg.cg_iterations, 0);
+  EXPECT_LT((cg.solution.values - direct.solution.values).lpNorm<Eigen::Infinity>(),
+            1e-9 * direct.solution.values.lpNorm<Eigen::Infinity>());
+}
+
 TEST(Poisson, RejectsInvalidDegree) {
   mesh::TetMesh m;
   m.nodes = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};

@@ -7,6 +7,7 @@
 #include "curvetet/highorder/quadrature.hpp"
 
 #include <Eigen/LU>
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -208,10 +209,30 @@ PoissonResult solve_poisson(const mesh::TetMesh& mesh, const PoissonProblem& pro
 
   Eigen::SparseMatrix<double> matrix(num_free, num_free);
   matrix.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(matrix);
-  if (solver.info() != Eigen::Success) throw Error(ExitCode::internal, "Poisson stiffness factorisation failed");
-  Eigen::VectorXd u = solver.solve(rhs);
-  if (solver.info() != Eigen::Success) throw Error(ExitCode::internal, "Poisson solve failed");
+  bool direct = options.solver == LinearSolver::direct ||
+                (options.solver == LinearSolver::automatic && num_free <= kDirectSolverMaxUnknowns);
+  Eigen::VectorXd u;
+  if (direct) {
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(matrix);
+    if (solver.info() != Eigen::Success) throw Error(ExitCode::internal, "Poisson stiffness factorisation failed");
+    u = solver.solve(rhs);
+    if (solver.info() != Eigen::Success) throw Error(ExitCode::internal, "Poisson solve failed");
+    result.solver_used = LinearSolver::direct;
+  } else {
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                             Eigen::IncompleteCholesky<double>>
+        solver;
+    solver.setTolerance(1e-12);
+    solver.setMaxIterations(std::max(1000, num_free));
+    solver.compute(matrix);
+    if (solver.info() != Eigen::Success) throw Error(ExitCode::internal, "incomplete Cholesky failed");
+    u = solver.solve(rhs);
+    if (solver.info() != Eigen::Success)
+      throw Error(ExitCode::internal, "conjugate gradients did not converge (residual " +
+                                          std::to_string(solver.error()) + ")");
+    result.solver_used = LinearSolver::conjugate_gradient;
+    result.cg_iterations = static_cast<int>(solver.iterations());
+  }
   for (int d = 0; d < field.num_dofs(); ++d)
     if (free_index[d] >= 0) field.values[d] = u[free_index[d]];
   return result;

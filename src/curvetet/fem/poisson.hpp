@@ -17,7 +17,9 @@
 // the mesh's listed boundary triangles are not used. Dirichlet dofs are the
 // dofs on those faces; they take g at their position (nodal interpolation,
 // as DOLFINx does) and are eliminated, so the remaining system is SPD and is
-// solved with Eigen::SimplicialLDLT.
+// solved with Eigen::SimplicialLDLT (direct) or, for large systems where the
+// 3D fill-in of the factor dominates, with conjugate gradients
+// preconditioned by incomplete Cholesky to a relative residual of 1e-12.
 //
 // Quadrature (conical product, highorder/quadrature.hpp, exact to degree
 // 2q-3 with q points per direction): degree d = 2Q + 2 + 3(P-1). On affine
@@ -32,7 +34,8 @@
 // `quadrature_degree` overrides d.
 //
 // Throws Error(verification) when det J <= 0 at a quadrature point (an
-// invalid element), Error(internal) when the factorisation fails.
+// invalid element), Error(internal) when the factorisation fails or CG does
+// not converge.
 #include "curvetet/fem/manufactured.hpp"
 #include "curvetet/mesh/tet_mesh.hpp"
 
@@ -53,9 +56,17 @@ struct PoissonProblem {
 // -Δu = f with f = -laplacian and g = value: u is the exact solution.
 PoissonProblem manufactured_problem(const ManufacturedSolution& exact);
 
+enum class LinearSolver {
+  automatic,         // direct up to kDirectSolverMaxUnknowns free dofs, else CG
+  direct,            // SimplicialLDLT
+  conjugate_gradient // CG + IncompleteCholesky, relative residual 1e-12
+};
+constexpr int kDirectSolverMaxUnknowns = 20000;
+
 struct PoissonOptions {
   int degree = 2;            // Q, order of the unknowns (1..8)
   int quadrature_degree = 0; // 0 = automatic (see above)
+  LinearSolver solver = LinearSolver::automatic;
 };
 
 // A continuous order-Q field on the mesh.
@@ -72,6 +83,8 @@ struct PoissonResult {
   FiniteElementField solution;
   int num_dirichlet = 0;    // dofs fixed by g
   int quadrature_degree = 0;
+  LinearSolver solver_used = LinearSolver::direct;
+  int cg_iterations = 0; // 0 for the direct solver
 };
 
 // Automatic quadrature degree for geometry order P and unknowns of order Q.
