@@ -4,7 +4,6 @@
 #include "curvetet/core/error.hpp"
 #include "curvetet/fem/manufactured.hpp"
 #include "curvetet/fem/poisson.hpp"
-#include "curvetet/highorder/conforming_nodes.hpp"
 #include "gmsh_meshes.hpp"
 #include "support/run_command.hpp"
 

@@ -26,12 +26,13 @@
 // tets (P = 1, or curved-order nodes placed affinely) the stiffness
 // integrand has degree 2(Q-1) and the mass-type terms u_h^2, f φ with a
 // polynomial f of degree <= 2 have degree <= 2Q + 2, so they are exact. On
-// curved tets the integrands are rational (adj(J)/det J); the extra 3(P-1)
-// is the degree of det J, which multiplies every integrand, so a polynomial
-// f is integrated exactly against the Jacobian weight and the stiffness
-// quotient is resolved to the same order. The geometry Jacobian is
-// evaluated at every quadrature point from the order-P element map.
-// `quadrature_degree` overrides d.
+// curved tets the stiffness integrand is rational (∇φ adj(J) adj(J)^T ∇φ /
+// det J) and f∘x has degree deg(f)·P, so no finite rule is exact; the extra
+// 3(P-1) is the degree of det J, the weight of every integrand, which keeps
+// the quadrature error well below the discretisation error (measured: the
+// same L2 error as DOLFINx to 5e-6 relative on a curved P = 2 ball). The
+// geometry Jacobian is evaluated at every quadrature point from the order-P
+// element map. `quadrature_degree` overrides d.
 //
 // Throws Error(verification) when det J <= 0 at a quadrature point (an
 // invalid element), Error(internal) when the factorisation fails or CG does
