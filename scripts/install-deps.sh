@@ -4,7 +4,7 @@
 set -euo pipefail
 build_pkgs=(cmake ninja-build g++ libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libtbb-dev
             libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev)
-test_pkgs=(gmsh python3-gmsh python3-meshio python3-numpy)
+test_pkgs=(gmsh python3-gmsh python3-meshio python3-numpy python3-dolfinx)
 bench_pkgs=(tetgen time)
 
 pkgs=("${build_pkgs[@]}")
