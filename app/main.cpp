@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   root.fallthrough();
 
   std::vector<app::Command> commands = {app::add_check_input_command(root)};
+  commands.push_back(app::add_tetrahedralize_command(root));
   auto run_main_job = app::add_mesh_options(root);
   // The main job's MESH is required only when no subcommand is given.
   root.get_option("MESH")->required(false);

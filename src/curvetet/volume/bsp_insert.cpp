@@ -2,6 +2,7 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
+#include "curvetet/geometry/predicates.hpp"
 #include "curvetet/mesh/edge_topology.hpp"
 
 #include <Eigen/Geometry>
@@ -20,6 +21,8 @@ constexpr double kUnit = std::numeric_limits<double>::epsilon() / 2;
 // Plane {x : n.(x - a) = 0}; a is a double point, n exact; n points to the
 // positive side.
 struct Plane {
+  bool through_triangle = false; // the plane of tri[0..2] (n = (t1-t0)x(t2-t0))
+  Vec3 tri[3];
   Vec3 a;
   mpq_class n[3];
   Vec3 nd;      // n rounded toward zero
@@ -41,6 +44,40 @@ void cross(const mpq_class u[3], const mpq_class v[3], mpq_class out[3]) {
   out[0] = u[1] * v[2] - u[2] * v[1];
   out[1] = u[2] * v[0] - u[0] * v[2];
   out[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+// A surface triangle as seen by the cut filter: its plane, and the planes
+// through its edges perpendicular to it, normals pointing away from it.
+struct TriangleShape {
+  const Plane* plane = nullptr;
+  Plane edge[3];
+  QPoint corner[3];
+};
+
+mpq_class value_q(const Plane& p, const QPoint& q) {
+  return p.n[0] * (q.c[0] - p.a[0]) + p.n[1] * (q.c[1] - p.a[1]) + p.n[2] * (q.c[2] - p.a[2]);
+}
+
+// Exact side of a rational point (double filter first, as Complex::side).
+int side_q(const Plane& p, const QPoint& q) {
+  const Vec3 x(q.c[0].get_d(), q.c[1].get_d(), q.c[2].get_d());
+  const double s = p.nd.dot(x - p.a);
+  const double m = std::max(x.cwiseAbs().maxCoeff(), p.a.cwiseAbs().maxCoeff());
+  const double bound = 128 * std::numeric_limits<double>::epsilon() / 2 * p.nd_l1 * m;
+  if (s > bound) return 1;
+  if (s < -bound) return -1;
+  return sgn(value_q(p, q));
+}
+
+// sign(((q - p) x (x - p)) . n)
+int orient_in_plane(const QPoint& p, const QPoint& q, const QPoint& x, const mpq_class n[3]) {
+  mpq_class u[3], w[3], c[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = q.c[k] - p.c[k];
+    w[k] = x.c[k] - p.c[k];
+  }
+  cross(u, w, c);
+  return sgn(c[0] * n[0] + c[1] * n[1] + c[2] * n[2]);
 }
 
 std::uint64_t edge_key(int a, int b) {
@@ -93,6 +130,7 @@ class Complex {
 
   // Exact side of vertex i (double filter first).
   int side(const Plane& p, int i) const {
+    if (p.through_triangle && v.exact[i]) return geometry::orient3d(p.tri[0], p.tri[1], p.tri[2], v.d[i]);
     const Vec3& x = v.d[i];
     const double s = p.nd.dot(x - p.a);
     const double m = std::max(x.cwiseAbs().maxCoeff(), p.a.cwiseAbs().maxCoeff());
@@ -123,7 +161,7 @@ class Complex {
 
   // Cuts cell c by plane p (the new cell goes to tet_cells[tet]); returns
   // whether it was split.
-  bool cut(int c, const Plane& p, int tet) {
+  bool cut(int c, const Plane& p, int tet, const TriangleShape* tri = nullptr) {
     std::vector<int> verts = cell_vertices(c);
     bool pos = false, neg = false;
     for (int i : verts) {
@@ -133,8 +171,7 @@ class Complex {
       neg |= s < 0;
     }
     if (!pos || !neg) return false;
-    ++num_cuts;
-    // 1. Split the crossing edges everywhere they appear.
+    // 1. The crossing edges and where they meet the plane.
     std::vector<std::uint64_t> crossing;
     for (int f : cells[c]) {
       const auto& l = faces[f].loop;
@@ -145,13 +182,22 @@ class Complex {
     }
     std::sort(crossing.begin(), crossing.end());
     crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
-    for (auto key : crossing) {
-      const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+    std::vector<QPoint> wq(crossing.size());
+    for (std::size_t e = 0; e < crossing.size(); ++e) {
+      const int a = static_cast<int>(crossing[e] >> 32), b = static_cast<int>(crossing[e] & 0xffffffffu);
       const mpq_class va = value(p, a), vb = value(p, b);
       const mpq_class t = va / (va - vb);
-      QPoint w;
-      for (int i = 0; i < 3; ++i) w.c[i] = v.q[a].c[i] + t * (v.q[b].c[i] - v.q[a].c[i]);
-      const int wi = v.add(w);
+      for (int i = 0; i < 3; ++i) wq[e].c[i] = v.q[a].c[i] + t * (v.q[b].c[i] - v.q[a].c[i]);
+    }
+    // 2. Skip the cut when the triangle misses the cell's interior: then it
+    // misses the relative interior of the section S, and some edge line of S
+    // or of the triangle separates them in the plane (2D separating axes).
+    if (tri && separated(c, crossing, wq, *tri)) return false;
+    ++num_cuts;
+    // 3. Split the crossing edges everywhere they appear.
+    for (std::size_t e = 0; e < crossing.size(); ++e) {
+      const int a = static_cast<int>(crossing[e] >> 32), b = static_cast<int>(crossing[e] & 0xffffffffu);
+      const int wi = v.add(wq[e]);
       touch(wi);
       sgn_[wi] = 0;
       split_edge(a, b, wi);
@@ -247,6 +293,63 @@ class Complex {
   unsigned stamp_ = 0;
   std::unordered_map<std::uint64_t, std::vector<int>> edge_faces_;
 
+  bool separated(int c, const std::vector<std::uint64_t>& crossing, const std::vector<QPoint>& wq,
+                 const TriangleShape& tri) {
+    // Section points: cell vertices on the plane, and the crossing points.
+    std::vector<const QPoint*> pts;
+    for (int f : cells[c])
+      for (int i : faces[f].loop)
+        if (sgn_[i] == 0) pts.push_back(&v.q[i]);
+    std::sort(pts.begin(), pts.end());
+    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    for (const auto& w : wq) pts.push_back(&w);
+    for (const auto& e : tri.edge) {
+      bool all_out = true;
+      for (const QPoint* q : pts)
+        if (side_q(e, *q) < 0) {
+          all_out = false;
+          break;
+        }
+      if (all_out) return true;
+    }
+    // Edges of S: per face of the cell, its two section points.
+    auto wpoint = [&](int a, int b) -> const QPoint* {
+      const auto it = std::lower_bound(crossing.begin(), crossing.end(), edge_key(a, b));
+      return &wq[it - crossing.begin()];
+    };
+    for (int f : cells[c]) {
+      const auto& l = faces[f].loop;
+      const QPoint* ends[2];
+      int m = 0;
+      for (std::size_t k = 0; k < l.size() && m <= 2; ++k) {
+        const int a = l[k], b = l[(k + 1) % l.size()];
+        if (sgn_[a] == 0) {
+          if (m < 2) ends[m] = &v.q[a];
+          ++m;
+        }
+        if (sgn_[a] * sgn_[b] < 0) {
+          if (m < 2) ends[m] = wpoint(a, b);
+          ++m;
+        }
+      }
+      if (m != 2) continue;
+      int ref = 0;
+      for (const QPoint* q : pts) {
+        ref = orient_in_plane(*ends[0], *ends[1], *q, tri.plane->n);
+        if (ref != 0) break;
+      }
+      if (ref == 0) continue;
+      bool all_out = true;
+      for (const auto& corner : tri.corner)
+        if (orient_in_plane(*ends[0], *ends[1], corner, tri.plane->n) * ref > 0) {
+          all_out = false;
+          break;
+        }
+      if (all_out) return true;
+    }
+    return false;
+  }
+
   void touch(int i) {
     if (static_cast<int>(mark_.size()) <= i) {
       mark_.resize(2 * i + 16, 0);
@@ -330,6 +433,8 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
       }
       cross(u, w, n);
       tri_plane[t] = make_plane(P[f[0]], n);
+      tri_plane[t].through_triangle = true;
+      for (int k = 0; k < 3; ++k) tri_plane[t].tri[k] = P[f[k]];
     }
     auto topo = mesh::build_edge_topology(triangles);
     for (int e = 0; e < topo.num_edges(); ++e) {
@@ -363,9 +468,23 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     tri_box[t].min().array() -= pad;
     tri_box[t].max().array() += pad;
   }
+  std::vector<TriangleShape> shape(nt);
+  for (int t = 0; t < nt; ++t) {
+    const auto& f = triangles[t];
+    shape[t].plane = &tri_plane[t];
+    for (int k = 0; k < 3; ++k) {
+      shape[t].corner[k] = to_q(P[f[k]]);
+      const Vec3& x = P[f[k]];
+      const Vec3& y = P[f[(k + 1) % 3]];
+      mpq_class u[3], m[3];
+      for (int i = 0; i < 3; ++i) u[i] = mpq_class(y[i]) - x[i];
+      cross(u, tri_plane[t].n, m); // (y - x) x n points away from the triangle
+      shape[t].edge[k] = make_plane(x, m);
+    }
+  }
   for (int T = 0; T < ntet; ++T) {
     for (int t : tet_tris[T]) {
-      auto apply = [&](const Plane& p) {
+      auto apply = [&](const Plane& p, const TriangleShape* filter) {
         const std::size_t count = cx.tet_cells[T].size();
         for (std::size_t k = 0; k < count; ++k) {
           const int c = cx.tet_cells[T][k];
@@ -377,11 +496,11 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
             box.max().array() += pad;
             if (!box.intersects(tri_box[t])) continue;
           }
-          cx.cut(c, p, T);
+          cx.cut(c, p, T, filter);
         }
       };
-      apply(tri_plane[t]);
-      for (const auto& ep : edge_planes[t]) apply(ep);
+      apply(tri_plane[t], &shape[t]);
+      for (const auto& ep : edge_planes[t]) apply(ep, nullptr);
     }
   }
 
