@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -71,6 +72,20 @@ int side_q(const Plane& p, const QPoint& q) {
 
 // sign(((q - p) x (x - p)) . n)
 int orient_in_plane(const QPoint& p, const QPoint& q, const QPoint& x, const mpq_class n[3]) {
+  {
+    // double filter: coordinates within 2u|.| of the exact ones, n likewise
+    const Vec3 pd(p.c[0].get_d(), p.c[1].get_d(), p.c[2].get_d());
+    const Vec3 qd(q.c[0].get_d(), q.c[1].get_d(), q.c[2].get_d());
+    const Vec3 xd(x.c[0].get_d(), x.c[1].get_d(), x.c[2].get_d());
+    const Vec3 nd(n[0].get_d(), n[1].get_d(), n[2].get_d());
+    const Vec3 u = qd - pd, w = xd - pd;
+    const double val = u.cross(w).dot(nd);
+    const double m = std::max({pd.cwiseAbs().maxCoeff(), qd.cwiseAbs().maxCoeff(), xd.cwiseAbs().maxCoeff()});
+    const double a = u.cwiseAbs().maxCoeff(), b = w.cwiseAbs().maxCoeff();
+    const double bound = 1024 * 1.1102230246251565e-16 * nd.cwiseAbs().sum() * (m * (a + b) + a * b + m * m * 1e-300);
+    if (val > bound) return 1;
+    if (val < -bound) return -1;
+  }
   mpq_class u[3], w[3], c[3];
   for (int k = 0; k < 3; ++k) {
     u[k] = q.c[k] - p.c[k];
@@ -89,6 +104,10 @@ struct Face {
   std::vector<int> loop; // cyclic, convex, unoriented
   int cell[2] = {-1, -1};
   int tri = -1;          // surface triangle containing the face, or -1
+  // Supporting plane: the cutting plane that made it, or (when null) the
+  // plane of the background points origin[0..2].
+  const Plane* plane = nullptr;
+  std::array<int, 3> origin{-1, -1, -1};
 };
 
 class Complex {
@@ -118,7 +137,7 @@ class Complex {
         const int a = q[(k + 1) % 4], b = q[(k + 2) % 4], c = q[(k + 3) % 4];
         auto [it, fresh] = face_of.try_emplace(tri_key(a, b, c), static_cast<int>(faces.size()));
         if (fresh) {
-          faces.push_back(Face{{a, b, c}, {t, -1}, -1});
+          faces.push_back(Face{{a, b, c}, {t, -1}, -1, nullptr, {a, b, c}});
           add_edges(it->second);
         } else {
           faces[it->second].cell[1] = t;
@@ -171,6 +190,17 @@ class Complex {
       neg |= s < 0;
     }
     if (!pos || !neg) return false;
+    // Cheap separation first: the cell beyond one of the triangle's edges.
+    if (tri)
+      for (const auto& e : tri->edge) {
+        bool all_out = true;
+        for (int i : verts)
+          if (side(e, i) < 0) {
+            all_out = false;
+            break;
+          }
+        if (all_out) return false;
+      }
     // 1. The crossing edges and where they meet the plane.
     std::vector<std::uint64_t> crossing;
     for (int f : cells[c]) {
@@ -268,7 +298,7 @@ class Complex {
     for (int f : minus)
       for (int& x : faces[f].cell)
         if (x == c) x = cm;
-    faces.push_back(Face{std::move(loop), {c, cm}, -1});
+    faces.push_back(Face{std::move(loop), {c, cm}, -1, &p, {-1, -1, -1}});
     add_edges(nf);
     plus.push_back(nf);
     minus.push_back(nf);
@@ -395,7 +425,7 @@ class Complex {
     const bool first_plus = sgn_[first[1]] > 0;
     const int a = l[z0], b = l[z1];
     const int g = static_cast<int>(faces.size());
-    faces.push_back(Face{second, {faces[f].cell[0], faces[f].cell[1]}, -1});
+    faces.push_back(Face{second, {faces[f].cell[0], faces[f].cell[1]}, -1, faces[f].plane, faces[f].origin});
     faces[f].loop = std::move(first);
     // Edges of g (except the chord) now belong to g instead of f.
     for (std::size_t k = 0; k + 1 < second.size(); ++k) {
@@ -456,6 +486,12 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     }
   }
 
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&](const char* what) {
+    const auto now = std::chrono::steady_clock::now();
+    logger().debug("volume: BSP {} in {:.3f} s", what, std::chrono::duration<double>(now - clock).count());
+    clock = now;
+  };
   // Cut every tet's cells by the planes of the triangles meeting them. A cell
   // whose (slightly grown) box misses the triangle's box cannot meet the
   // triangle and is skipped; cutting more cells than needed is harmless.
@@ -468,6 +504,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     tri_box[t].min().array() -= pad;
     tri_box[t].max().array() += pad;
   }
+  lap("triangle/tet incidence");
   std::vector<TriangleShape> shape(nt);
   for (int t = 0; t < nt; ++t) {
     const auto& f = triangles[t];
@@ -504,6 +541,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     }
   }
 
+  lap("cuts");
   // Faces lying in a surface triangle.
   std::vector<char> checked(cx.faces.size(), 0);
   for (int T = 0; T < ntet; ++T) {
@@ -515,12 +553,18 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
         const auto& loop = cx.faces[f].loop;
         for (int t : tet_tris[T]) {
           const Plane& pl = tri_plane[t];
+          // Is the face's supporting plane the triangle's? (exact, on the
+          // triangle's double corners)
+          const Face& face = cx.faces[f];
           bool in_plane = true;
-          for (int i : loop)
-            if (cx.side(pl, i) != 0) {
-              in_plane = false;
-              break;
-            }
+          if (face.plane == &pl) {
+          } else if (face.plane) {
+            for (int k = 0; k < 3 && in_plane; ++k) in_plane = side_q(*face.plane, shape[t].corner[k]) == 0;
+          } else {
+            const auto& o = face.origin;
+            for (int k = 0; k < 3 && in_plane; ++k)
+              in_plane = geometry::orient3d(P[o[0]], P[o[1]], P[o[2]], P[triangles[t][k]]) == 0;
+          }
           if (!in_plane) continue;
           // centroid inside the closed triangle?
           QPoint g;
@@ -549,6 +593,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
       }
   }
 
+  lap("surface faces");
   // Winding numbers by crossing surface faces, from the hull (winding 0).
   const int ncell = static_cast<int>(cx.cells.size());
   constexpr int kUnset = std::numeric_limits<int>::min();
@@ -587,6 +632,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     }
   }
 
+  lap("winding numbers");
   // Tetrahedralize the kept cells; fans on faces are shared.
   InsertedSurface out;
   out.num_cuts = cx.num_cuts;
@@ -630,6 +676,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   }
   for (int f = 0; f < static_cast<int>(cx.faces.size()); ++f)
     if (cx.faces[f].tri >= 0) face_triangles(f, out.refined[cx.faces[f].tri]);
+  lap("cell tetrahedralization");
   out.vertices = std::move(cx.v);
   return out;
 }

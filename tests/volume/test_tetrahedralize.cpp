@@ -1,0 +1,164 @@
+// tetrahedralize() end to end with the shell's one-sided extrusion: singular
+// vertices (zero-length pillars), very thin parts, the exterior, and the CLI
+// (the written .msh read back). Every case checks the exact contract: doubles,
+// positive tets (exact orient3d), boundary = input triangles, interior faces
+// shared by two tets, volume = enclosed volume.
+#include "shapes.hpp"
+#include "shell/tiny_meshes.hpp"
+
+#include "curvetet/io/write_surface.hpp"
+#include "curvetet/volume/tetrahedralize.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace curvetet {
+namespace {
+
+volume::TetrahedralizeResult expect_exact(const mesh::SurfaceMesh& s, bool exterior = false) {
+  volume::TetrahedralizeOptions o;
+  o.exterior = exterior;
+  auto r = volume::tetrahedralize(s, o);
+  for (int v = 0; v < s.num_vertices(); ++v)
+    EXPECT_EQ(std::memcmp(r.mesh.vertices[v].data(), s.vertices[v].data(), 3 * sizeof(double)), 0) << v;
+  mesh::TetMesh inside = r.mesh;
+  inside.tets.clear();
+  for (int t = 0; t < r.mesh.num_tets(); ++t)
+    if (r.mesh.tags[t] == 1) inside.tets.push_back(r.mesh.tets[t]);
+  const auto check = volume::verify_tet_mesh(inside, s.faces); // recomputed here, not trusted
+  EXPECT_TRUE(check.ok()) << check.text();
+  const double vol = test::enclosed_volume(s);
+  EXPECT_NEAR(check.volume, vol, 1e-9 * std::abs(vol));
+  return r;
+}
+
+// Thin slab [0,1]^2 x [0,t]: the layer must be thinner than t/2.
+mesh::SurfaceMesh slab(double t) {
+  auto m = test::unit_cube();
+  for (auto& v : m.vertices) v.z() *= t;
+  return m;
+}
+
+// Triangular prism whose cross-section has a 0.01 rad angle: a sharp, thin
+// wedge edge along x.
+//        2
+//       /|      cross-section in (y, z): 0 = (0,0), 1 = (1,0),
+//      / |      2 = (1, 0.01); extruded along x from 0 to 1.
+//     0--1
+mesh::SurfaceMesh thin_wedge() {
+  mesh::SurfaceMesh m;
+  const double h = 0.01;
+  for (double x : {0.0, 1.0}) {
+    m.vertices.emplace_back(x, 0, 0);
+    m.vertices.emplace_back(x, 1, 0);
+    m.vertices.emplace_back(x, 1, h);
+  }
+  m.faces = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  return m;
+}
+
+// Zigzag crown around an apex: a star of nearly vertical faces.
+TEST(VolumeTetrahedralize, CrownApex) { expect_exact(shell::test::crown()); }
+
+// The origin of the folded star sees faces with normals +z and -z: no
+// pillar direction exists, the extrusion pins it (zero-length pillar).
+TEST(VolumeTetrahedralize, SingularFoldedStar) {
+  const auto r = expect_exact(shell::test::folded_star());
+  EXPECT_GE(r.singular_inward, 1); // the case this test is about
+}
+
+TEST(VolumeTetrahedralize, VeryThinSlab) { expect_exact(slab(1e-4)); }
+
+TEST(VolumeTetrahedralize, SharpThinWedge) { expect_exact(thin_wedge()); }
+
+TEST(VolumeTetrahedralize, NonConvexSphereWithDent) {
+  auto m = test::icosphere(2);
+  for (auto& v : m.vertices)
+    if (v.z() > 0.8) v.z() = 1.6 - v.z(); // push the cap inward: a dent
+  expect_exact(m);
+}
+
+TEST(VolumeTetrahedralize, InteriorAndExteriorShareTheSurface) {
+  const auto m = test::octahedron();
+  const auto r = expect_exact(m, true);
+  mesh::TetMesh outside = r.mesh;
+  outside.tets.clear();
+  for (int t = 0; t < r.mesh.num_tets(); ++t)
+    if (r.mesh.tags[t] == 2) outside.tets.push_back(r.mesh.tets[t]);
+  ASSERT_FALSE(outside.tets.empty());
+  std::vector<mesh::Tri> reversed;
+  for (auto f : m.faces) reversed.push_back({f[0], f[2], f[1]});
+  Eigen::Vector3d lo = r.mesh.vertices[0], hi = lo;
+  for (const auto& p : r.mesh.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const auto check = volume::verify_tet_mesh(outside, reversed, volume::Box{lo, hi});
+  EXPECT_TRUE(check.ok()) << check.text();
+  const double box = (hi - lo).prod();
+  EXPECT_NEAR(check.volume, box - test::enclosed_volume(m), 1e-9 * box);
+  // the whole mesh: only the box is boundary
+  const auto all = volume::verify_tet_mesh(r.mesh, {}, volume::Box{lo, hi});
+  EXPECT_TRUE(all.ok()) << all.text();
+}
+
+// Reads the nodes and tets of our MSH 4.1 output (one node block).
+mesh::TetMesh read_back(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  mesh::TetMesh m;
+  while (std::getline(in, line)) {
+    if (line == "$Nodes") {
+      long blocks, n, lo, hi;
+      in >> blocks >> n >> lo >> hi;
+      int dim, tag, param;
+      long count;
+      in >> dim >> tag >> param >> count;
+      for (long i = 0; i < count; ++i) in >> lo;
+      m.vertices.resize(count);
+      for (auto& p : m.vertices) in >> p.x() >> p.y() >> p.z();
+    } else if (line == "$Elements") {
+      long blocks, n, lo, hi;
+      in >> blocks >> n >> lo >> hi;
+      for (long b = 0; b < blocks; ++b) {
+        int dim, tag, type;
+        long count;
+        in >> dim >> tag >> type >> count;
+        for (long i = 0; i < count; ++i) {
+          long id;
+          std::array<int, 4> t;
+          in >> id >> t[0] >> t[1] >> t[2] >> t[3];
+          for (int& x : t) --x;
+          m.tets.push_back(t);
+          m.tags.push_back(tag);
+        }
+      }
+    }
+  }
+  return m;
+}
+
+TEST(VolumeTetrahedralize, CommandWritesAVerifiableMsh) {
+  const auto dir = std::filesystem::temp_directory_path() / "curvetet_test_tetrahedralize";
+  std::filesystem::create_directories(dir);
+  const auto m = shell::test::crown();
+  io::write_surface((dir / "crown.off").string(), m);
+  const auto out = (dir / "crown.msh").string();
+  std::filesystem::remove(out);
+  const std::string cmd = std::string(CURVETET_BINARY) + " -q tetrahedralize " + (dir / "crown.off").string() +
+                          " -o " + out;
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const auto back = read_back(out);
+  ASSERT_GE(back.num_vertices(), m.num_vertices());
+  for (int v = 0; v < m.num_vertices(); ++v) EXPECT_EQ(back.vertices[v], m.vertices[v]) << v;
+  const auto check = volume::verify_tet_mesh(back, m.faces);
+  EXPECT_TRUE(check.ok()) << check.text();
+}
+
+} // namespace
+} // namespace curvetet
