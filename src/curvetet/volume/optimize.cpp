@@ -84,14 +84,15 @@ class Optimizer {
     return true;
   }
 
-  // --- smoothing: descend the star's AMIPS sum, keep every tet positive. ---
+  // --- smoothing: descend the star's sum of squared AMIPS energies without
+  // raising its maximum; every tet stays positive (exact). ---
   bool smooth(int v) {
     if (m_.frozen[v] || vt_[v].empty()) return false;
     const Vec3 p0 = m_.v.d[v];
     double e0 = 0, max0 = 0, len = 0;
     for (int t : vt_[v]) {
       const double e = energy(m_.tets[t]);
-      e0 += e;
+      e0 += e * e; // squared: the worst tets dominate
       max0 = std::max(max0, e);
       for (int x : m_.tets[t]) len += (m_.v.d[x] - p0).norm();
     }
@@ -101,7 +102,7 @@ class Optimizer {
       double s = 0, m = 0;
       for (int t : vt_[v]) {
         const double e = energy_at(m_.tets[t], v, p);
-        s += e;
+        s += e * e;
         m = std::max(m, e);
       }
       if (mx) *mx = m;
