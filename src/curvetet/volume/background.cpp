@@ -27,7 +27,7 @@ bool may_meet(const std::vector<mesh::Vec3>& p, const std::array<int, 4>& t, con
     const int inner = geometry::orient3d(p[a], p[b], p[c], p[t[k]]);
     bool all_out = true;
     for (int x : f)
-      if (geometry::orient3d(p[a], p[b], p[c], p[x]) != -inner) { // inside or on the plane
+      if (x == a || x == b || x == c || geometry::orient3d(p[a], p[b], p[c], p[x]) != -inner) { // inside or on
         all_out = false;
         break;
       }
@@ -35,6 +35,7 @@ bool may_meet(const std::vector<mesh::Vec3>& p, const std::array<int, 4>& t, con
   }
   int pos = 0, neg = 0;
   for (int x : t) {
+    if (x == f[0] || x == f[1] || x == f[2]) continue; // on the plane
     const int s = geometry::orient3d(p[f[0]], p[f[1]], p[f[2]], p[x]);
     pos += s > 0;
     neg += s < 0;

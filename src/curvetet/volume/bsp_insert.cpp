@@ -24,6 +24,7 @@ constexpr double kUnit = std::numeric_limits<double>::epsilon() / 2;
 struct Plane {
   bool through_triangle = false; // the plane of tri[0..2] (n = (t1-t0)x(t2-t0))
   Vec3 tri[3];
+  int ids[3] = {-1, -1, -1};     // their vertex ids (known to be on the plane)
   Vec3 a;
   mpq_class n[3];
   Vec3 nd;      // n rounded toward zero
@@ -149,6 +150,7 @@ class Complex {
 
   // Exact side of vertex i (double filter first).
   int side(const Plane& p, int i) const {
+    if (i == p.ids[0] || i == p.ids[1] || i == p.ids[2]) return 0;
     if (p.through_triangle && v.exact[i]) return geometry::orient3d(p.tri[0], p.tri[1], p.tri[2], v.d[i]);
     const Vec3& x = v.d[i];
     const double s = p.nd.dot(x - p.a);
@@ -464,7 +466,10 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
       cross(u, w, n);
       tri_plane[t] = make_plane(P[f[0]], n);
       tri_plane[t].through_triangle = true;
-      for (int k = 0; k < 3; ++k) tri_plane[t].tri[k] = P[f[k]];
+      for (int k = 0; k < 3; ++k) {
+        tri_plane[t].tri[k] = P[f[k]];
+        tri_plane[t].ids[k] = f[k];
+      }
     }
     auto topo = mesh::build_edge_topology(triangles);
     for (int e = 0; e < topo.num_edges(); ++e) {
@@ -536,7 +541,22 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
           cx.cut(c, p, T, filter);
         }
       };
-      apply(tri_plane[t], &shape[t]);
+      // A background tet (still uncut) whose face plane has the whole
+      // triangle on its outer closed side cannot have the triangle inside.
+      bool misses = false;
+      if (cx.tet_cells[T].size() == 1) {
+        const auto& q = bg.tets[T];
+        for (int k = 0; k < 4 && !misses; ++k) {
+          const Vec3 &a = P[q[(k + 1) % 4]], &b = P[q[(k + 2) % 4]], &c = P[q[(k + 3) % 4]];
+          const int inner = geometry::orient3d(a, b, c, P[q[k]]);
+          misses = true;
+          for (int x : triangles[t])
+            if (x != q[(k + 1) % 4] && x != q[(k + 2) % 4] && x != q[(k + 3) % 4] &&
+                geometry::orient3d(a, b, c, P[x]) == inner)
+              misses = false;
+        }
+      }
+      if (!misses) apply(tri_plane[t], &shape[t]);
       for (const auto& ep : edge_planes[t]) apply(ep, nullptr);
     }
   }
@@ -559,11 +579,18 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
           bool in_plane = true;
           if (face.plane == &pl) {
           } else if (face.plane) {
-            for (int k = 0; k < 3 && in_plane; ++k) in_plane = side_q(*face.plane, shape[t].corner[k]) == 0;
+            for (int k = 0; k < 3 && in_plane; ++k) {
+              const int x = triangles[t][k];
+              const auto& id = face.plane->ids;
+              in_plane = x == id[0] || x == id[1] || x == id[2] || side_q(*face.plane, shape[t].corner[k]) == 0;
+            }
           } else {
             const auto& o = face.origin;
-            for (int k = 0; k < 3 && in_plane; ++k)
-              in_plane = geometry::orient3d(P[o[0]], P[o[1]], P[o[2]], P[triangles[t][k]]) == 0;
+            for (int k = 0; k < 3 && in_plane; ++k) {
+              const int x = triangles[t][k];
+              in_plane = x == o[0] || x == o[1] || x == o[2] ||
+                         geometry::orient3d(P[o[0]], P[o[1]], P[o[2]], P[x]) == 0;
+            }
           }
           if (!in_plane) continue;
           // centroid inside the closed triangle?

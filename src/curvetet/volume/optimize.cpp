@@ -33,6 +33,8 @@ double amips(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 namespace {
 
 using Tet = std::array<int, 4>;
+// Largest AMIPS energy a collapse may give a tet whose 4 vertices are frozen.
+constexpr double kFrozenTetLimit = 6.0;
 
 class Optimizer {
  public:
@@ -172,7 +174,12 @@ class Optimizer {
       for (int& x : n)
         if (x == v) x = u;
       if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
-      new_max = std::max(new_max, energy(n));
+      const double e = energy(n);
+      // A tet on frozen vertices only can never be smoothed: keep it good.
+      if (require_quality && e > kFrozenTetLimit && m_.frozen[n[0]] && m_.frozen[n[1]] && m_.frozen[n[2]] &&
+          m_.frozen[n[3]])
+        return false;
+      new_max = std::max(new_max, e);
     }
     if (removed.empty()) return false; // not an edge
     if (require_quality && !(new_max <= old_max)) return false;

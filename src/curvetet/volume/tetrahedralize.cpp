@@ -12,6 +12,7 @@ namespace {
 LayeredSurface extrude(const mesh::SurfaceMesh& surface, OffsetSide side, double thickness, int* singular) {
   shell::ExtrusionOptions eo;
   eo.target_thickness = thickness;
+  eo.max_rounds = 10; // a thin layer is enough here; thickening rounds cost time
   auto ex = shell::extrude_one_sided(surface, side == OffsetSide::inward ? shell::Side::inward : shell::Side::outward,
                                      eo);
   LayeredSurface l;
