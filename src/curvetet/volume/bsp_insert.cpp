@@ -72,7 +72,10 @@ int side_q(const Plane& p, const QPoint& q) {
 }
 
 // sign(((q - p) x (x - p)) . n)
+bool same_point(const QPoint& a, const QPoint& b) { return a.c[0] == b.c[0] && a.c[1] == b.c[1] && a.c[2] == b.c[2]; }
+
 int orient_in_plane(const QPoint& p, const QPoint& q, const QPoint& x, const mpq_class n[3]) {
+  if (same_point(x, p) || same_point(x, q)) return 0;
   {
     // double filter: coordinates within 2u|.| of the exact ones, n likewise
     const Vec3 pd(p.c[0].get_d(), p.c[1].get_d(), p.c[2].get_d());
@@ -454,7 +457,11 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   // Planes of the triangles (normal = outward face normal) and, for edges
   // whose two triangles are coplanar, a plane through the edge.
   std::vector<Plane> tri_plane(nt);
-  std::vector<std::vector<Plane>> edge_planes(nt);
+  struct EdgePlane {
+    Plane plane;
+    int a, b; // the shared edge
+  };
+  std::vector<std::vector<EdgePlane>> edge_planes(nt);
   {
     for (int t = 0; t < nt; ++t) {
       const auto& f = triangles[t];
@@ -486,8 +493,8 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
       for (int i = 0; i < 3; ++i) u[i] = mpq_class(P[b][i]) - P[a][i];
       cross(u, tri_plane[f0].n, m);
       Plane ep = make_plane(P[a], m);
-      edge_planes[f0].push_back(ep);
-      edge_planes[f1].push_back(ep);
+      edge_planes[f0].push_back({ep, a, b});
+      edge_planes[f1].push_back({ep, a, b});
     }
   }
 
@@ -557,7 +564,33 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
         }
       }
       if (!misses) apply(tri_plane[t], &shape[t]);
-      for (const auto& ep : edge_planes[t]) apply(ep, nullptr);
+      // Edge planes only matter for cells with a face in the triangle's
+      // plane (touching it from one side) that the shared edge may cross.
+      for (const auto& ep : edge_planes[t]) {
+        Eigen::AlignedBox3d ebox;
+        ebox.extend(P[ep.a]);
+        ebox.extend(P[ep.b]);
+        const double pad = 1e-9 * (ebox.max().cwiseAbs().maxCoeff() + ebox.min().cwiseAbs().maxCoeff());
+        ebox.min().array() -= pad;
+        ebox.max().array() += pad;
+        const std::size_t count = cx.tet_cells[T].size();
+        for (std::size_t k = 0; k < count; ++k) {
+          const int c = cx.tet_cells[T][k];
+          const auto verts = cx.cell_vertices(c);
+          Eigen::AlignedBox3d box;
+          for (int i : verts) box.extend(cx.v.d[i]);
+          if (!box.intersects(ebox)) continue;
+          int zero = 0, pos = 0, neg = 0;
+          for (int i : verts) {
+            const int sd = cx.side(tri_plane[t], i);
+            zero += sd == 0;
+            pos += sd > 0;
+            neg += sd < 0;
+          }
+          if (zero < 3 || (pos > 0 && neg > 0)) continue;
+          cx.cut(c, ep.plane, T);
+        }
+      }
     }
   }
 
