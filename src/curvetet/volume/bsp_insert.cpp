@@ -183,6 +183,34 @@ class Complex {
     return out;
   }
 
+  // Splits face f (not its cells) by plane p when p crosses it; the cells
+  // keep both pieces (coplanar faces). Returns the new face or -1.
+  int split_face_by(int f, const Plane& p) {
+    bool pos = false, neg = false;
+    for (int i : faces[f].loop) {
+      touch(i);
+      const int s = side(p, i);
+      sgn_[i] = static_cast<signed char>(s);
+      pos |= s > 0;
+      neg |= s < 0;
+    }
+    if (!pos || !neg) return -1;
+    const std::vector<int> l = faces[f].loop;
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      const int a = l[k], b = l[(k + 1) % l.size()];
+      if (sgn_[a] * sgn_[b] >= 0) continue;
+      const mpq_class va = value(p, a), vb = value(p, b);
+      const mpq_class t = va / (va - vb);
+      QPoint w;
+      for (int i = 0; i < 3; ++i) w.c[i] = v.q[a].c[i] + t * (v.q[b].c[i] - v.q[a].c[i]);
+      const int wi = v.add(w);
+      touch(wi);
+      sgn_[wi] = 0;
+      split_edge(a, b, wi);
+    }
+    return std::get<0>(split_face(f));
+  }
+
   // Cuts cell c by plane p (the new cell goes to tet_cells[tet]); returns
   // whether it was split.
   bool cut(int c, const Plane& p, int tet, const TriangleShape* tri = nullptr) {
@@ -564,46 +592,28 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
         }
       }
       if (!misses) apply(tri_plane[t], &shape[t]);
-      // Edge planes only matter for cells with a face in the triangle's
-      // plane (touching it from one side) that the shared edge may cross.
-      for (const auto& ep : edge_planes[t]) {
-        Eigen::AlignedBox3d ebox;
-        ebox.extend(P[ep.a]);
-        ebox.extend(P[ep.b]);
-        const double pad = 1e-9 * (ebox.max().cwiseAbs().maxCoeff() + ebox.min().cwiseAbs().maxCoeff());
-        ebox.min().array() -= pad;
-        ebox.max().array() += pad;
-        const std::size_t count = cx.tet_cells[T].size();
-        for (std::size_t k = 0; k < count; ++k) {
-          const int c = cx.tet_cells[T][k];
-          const auto verts = cx.cell_vertices(c);
-          Eigen::AlignedBox3d box;
-          for (int i : verts) box.extend(cx.v.d[i]);
-          if (!box.intersects(ebox)) continue;
-          int zero = 0, pos = 0, neg = 0;
-          for (int i : verts) {
-            const int sd = cx.side(tri_plane[t], i);
-            zero += sd == 0;
-            pos += sd > 0;
-            neg += sd < 0;
-          }
-          if (zero < 3 || (pos > 0 && neg > 0)) continue;
-          cx.cut(c, ep.plane, T);
-        }
-      }
     }
   }
 
   lap("cuts");
   // Faces lying in a surface triangle.
+  // A face in the plane of a triangle whose edge is shared with a coplanar
+  // triangle may straddle that edge: it is split along it first (the face
+  // only, not the cells), so every face lies in one triangle or none.
   std::vector<char> checked(cx.faces.size(), 0);
   for (int T = 0; T < ntet; ++T) {
     if (tet_tris[T].empty()) continue;
+    std::vector<int> work;
     for (int c : cx.tet_cells[T])
-      for (int f : cx.cells[c]) {
-        if (checked[f]) continue;
-        checked[f] = 1;
-        const auto& loop = cx.faces[f].loop;
+      for (int f : cx.cells[c]) work.push_back(f);
+    while (!work.empty()) {
+      const int f = work.back();
+      work.pop_back();
+      if (static_cast<int>(checked.size()) < static_cast<int>(cx.faces.size())) checked.resize(cx.faces.size(), 0);
+      if (checked[f]) continue;
+      checked[f] = 1;
+      {
+        bool split = false;
         for (int t : tet_tris[T]) {
           const Plane& pl = tri_plane[t];
           // Is the face's supporting plane the triangle's? (exact, on the
@@ -626,6 +636,19 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
             }
           }
           if (!in_plane) continue;
+          for (const auto& ep : edge_planes[t]) {
+            const int g = cx.split_face_by(f, ep.plane);
+            if (g >= 0) {
+              checked.resize(cx.faces.size(), 0);
+              checked[f] = 0;
+              work.push_back(f);
+              work.push_back(g);
+              split = true;
+              break;
+            }
+          }
+          if (split) break;
+          const auto& loop = cx.faces[f].loop;
           // centroid inside the closed triangle?
           QPoint g;
           for (int i : loop)
@@ -651,6 +674,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
           }
         }
       }
+    }
   }
 
   lap("surface faces");
