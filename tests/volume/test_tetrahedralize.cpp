@@ -158,6 +158,20 @@ TEST(VolumeTetrahedralize, CommandWritesAVerifiableMsh) {
   for (int v = 0; v < m.num_vertices(); ++v) EXPECT_EQ(back.vertices[v], m.vertices[v]) << v;
   const auto check = volume::verify_tet_mesh(back, m.faces);
   EXPECT_TRUE(check.ok()) << check.text();
+  // Gmsh itself reads the file and finds the same tets.
+  if (std::filesystem::exists("/usr/bin/python3")) {
+    const auto count = (dir / "count.txt").string();
+    const std::string py = "/usr/bin/python3 -c \"import gmsh; gmsh.initialize(); "
+                           "gmsh.option.setNumber('General.Terminal', 0); gmsh.open('" + out + "'); "
+                           "t, e, n = gmsh.model.mesh.getElements(3); "
+                           "open('" + count + "', 'w').write(str(sum(len(x) for x in e)))\"";
+    if (std::system(py.c_str()) == 0) {
+      std::ifstream in(count);
+      long n = -1;
+      in >> n;
+      EXPECT_EQ(n, back.num_tets());
+    }
+  }
 }
 
 } // namespace
