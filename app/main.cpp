@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
   root.require_subcommand(0, 1);
   root.fallthrough();
 
-  std::vector<app::Command> commands = {app::add_check_input_command(root)};
+  std::vector<app::Command> commands = {app::add_check_input_command(root), app::add_shell_command(root)};
   commands.push_back(app::add_tetrahedralize_command(root));
   auto run_main_job = app::add_mesh_options(root);
   // The main job's MESH is required only when no subcommand is given.

@@ -2,6 +2,7 @@
 #include "tiny_meshes.hpp"
 
 #include "curvetet/check/preconditions.hpp"
+#include "curvetet/core/threads.hpp"
 #include "curvetet/mesh/edge_topology.hpp"
 #include "curvetet/shell/build.hpp"
 #include "curvetet/shell/invariants.hpp"
@@ -114,4 +115,22 @@ TEST(BuildShell, AdjacentSingularVerticesAreSplitApart) {
   for (int i = 0; i < m.num_vertices(); ++i) EXPECT_EQ(b.shell.middle[i], m.vertices[i]);
   for (int f = 0; f < b.shell.num_prisms(); ++f) ASSERT_EQ(b.shell.tracked[f].size(), 1u);
   expect_projection_round_trip(b.shell, 300, 3);
+}
+
+TEST(BuildShell, SameResultForOneAndTwoThreads) {
+  const auto m = test::sphere(3);
+  ShellOptions o;
+  o.extrusion.target_thickness = 0.4; // beyond the radius: many rejected growths
+  ShellBuild one, two;
+  {
+    curvetet::ThreadLimit limit(1);
+    one = build_shell(m, o);
+  }
+  {
+    curvetet::ThreadLimit limit(2);
+    two = build_shell(m, o);
+  }
+  EXPECT_GT(one.stats.reverts, 0);
+  EXPECT_EQ(one.shell.top, two.shell.top);
+  EXPECT_EQ(one.shell.bottom, two.shell.bottom);
 }

@@ -110,3 +110,29 @@ TEST(OneSidedExtrusion, LargeTargetStopsWherePrismsWouldInvert) {
   EXPECT_LT(x.max_length, 1.0);
   EXPECT_GT(x.min_length, 0.05);
 }
+
+TEST(OneSidedExtrusion, SingularVertexStaysOnTheSurface) {
+  // The folded star's centre sees no common direction: zero-length pillar,
+  // the offset vertex is the surface vertex, the layer is still valid.
+  const auto m = test::folded_star();
+  for (Side side : {Side::inward, Side::outward}) {
+    const auto x = extrude_one_sided(m, side, {});
+    ASSERT_TRUE(x.singular[0]);
+    EXPECT_EQ(x.offset[0], m.vertices[0]);
+    expect_valid_layer(m, x, side);
+    EXPECT_GT(x.min_length, 0);
+  }
+}
+
+TEST(OneSidedExtrusion, AdjacentSingularVerticesNeedNoSplit) {
+  // With a high singularity threshold several adjacent vertices are
+  // singular; the one-sided layer keeps the faces as they are.
+  const auto m = test::folded_star();
+  ExtrusionOptions o;
+  o.singular_dot = 0.3;
+  const auto x = extrude_one_sided(m, Side::outward, o);
+  int singular = 0;
+  for (char c : x.singular) singular += c;
+  EXPECT_GE(singular, 2);
+  expect_valid_layer(m, x, Side::outward);
+}

@@ -1,4 +1,5 @@
 // One test per shell invariant: a tiny configuration rejected, one accepted.
+#include "curvetet/shell/invariant_set.hpp"
 #include "curvetet/shell/invariants.hpp"
 
 #include <gtest/gtest.h>
@@ -154,4 +155,17 @@ TEST(CapsIntersectionFree, SharedPinchedVertexIsNotAnIntersection) {
   // Moving the bottom cap's corner 1 above the top cap makes them cross.
   s.bottom[1] = Vec3(1, 0, 0.4);
   EXPECT_FALSE(cap_intersections(s).empty());
+}
+
+TEST(InvariantSet, NamesTheFirstFailingInvariant) {
+  const auto set = InvariantSet::shell_invariants();
+  const std::vector<int> prism0{0};
+  Shell ok = one_prism();
+  EXPECT_FALSE(set.first_failure(ok, prism0, {}).has_value());
+  Shell flat = one_prism();
+  flat.top[2] = Vec3(0.2, 0.9, 0);
+  EXPECT_EQ(set.first_failure(flat, prism0, {}), InvariantKind::prism_positivity);
+  Shell steep = one_prism();
+  steep.input.vertices = {{0.1, 0.1, -0.5}, {0.6, 0.1, -0.5}, {0.1, 0.1, 0.5}};
+  EXPECT_EQ(set.first_failure(steep, prism0, {}), InvariantKind::section);
 }

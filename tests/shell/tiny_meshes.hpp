@@ -58,37 +58,6 @@ inline mesh::SurfaceMesh sphere(int levels) {
 
 namespace curvetet::shell::test {
 
-// A bipyramid over a zigzag "crown": apex 0 at the origin, ring vertices
-// 1..2k on the unit circle at heights +h, -h alternately, bottom apex
-// 2k+1 at (0, 0, -depth). Around apex 0 the face normals are nearly
-// horizontal and point all around: no direction sees them all, so apex 0
-// is singular.
-//
-//        +h   +h   +h          seen from the side: the ring zigzags
-//       /  \ /  \ /  \         around apex 0 (at height 0) far more
-//     -h    -h    -h           steeply than the cone rises.
-inline mesh::SurfaceMesh crown(int k = 3, double h = 3.0, double depth = 10.0) {
-  mesh::SurfaceMesh m;
-  m.vertices.push_back({0, 0, 0});
-  const int n = 2 * k;
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * 3.14159265358979323846 * i / n;
-    m.vertices.push_back({std::cos(a), std::sin(a), i % 2 == 0 ? h : -h});
-  }
-  m.vertices.push_back({0, 0, -depth});
-  const int bottom = n + 1;
-  for (int i = 0; i < n; ++i) {
-    const int a = 1 + i, b = 1 + (i + 1) % n;
-    m.faces.push_back({0, a, b});
-    m.faces.push_back({bottom, b, a});
-  }
-  return m;
-}
-
-} // namespace curvetet::shell::test
-
-namespace curvetet::shell::test {
-
 // A closed polyhedron with a singular vertex at the origin. Its star is six
 // quarter-plane triangles through the origin (each in a coordinate plane),
 // spanning the skew hexagon +x, +y, +z, -y, -x, -z of the unit octahedron;

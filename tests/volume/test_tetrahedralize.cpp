@@ -62,8 +62,25 @@ mesh::SurfaceMesh thin_wedge() {
   return m;
 }
 
-// Zigzag crown around an apex: a star of nearly vertical faces.
-TEST(VolumeTetrahedralize, CrownApex) { expect_exact(shell::test::crown()); }
+// A needle: 8-sided double cone, radius 0.01, length 2 (thin and sharp).
+mesh::SurfaceMesh needle() {
+  mesh::SurfaceMesh m;
+  const int k = 8;
+  m.vertices.emplace_back(0, 0, 1);  // 0: tip
+  m.vertices.emplace_back(0, 0, -1); // 1: other tip
+  for (int i = 0; i < k; ++i) {
+    const double a = 2 * M_PI * i / k;
+    m.vertices.emplace_back(0.01 * std::cos(a), 0.01 * std::sin(a), 0);
+  }
+  for (int i = 0; i < k; ++i) {
+    const int r0 = 2 + i, r1 = 2 + (i + 1) % k;
+    m.faces.push_back({0, r0, r1});
+    m.faces.push_back({1, r1, r0});
+  }
+  return m;
+}
+
+TEST(VolumeTetrahedralize, ThinNeedle) { expect_exact(needle()); }
 
 // The origin of the folded star sees faces with normals +z and -z: no
 // pillar direction exists, the extrusion pins it (zero-length pillar).
@@ -146,7 +163,7 @@ mesh::TetMesh read_back(const std::string& path) {
 TEST(VolumeTetrahedralize, CommandWritesAVerifiableMsh) {
   const auto dir = std::filesystem::temp_directory_path() / "curvetet_test_tetrahedralize";
   std::filesystem::create_directories(dir);
-  const auto m = shell::test::crown();
+  const auto m = needle();
   io::write_surface((dir / "crown.off").string(), m);
   const auto out = (dir / "crown.msh").string();
   std::filesystem::remove(out);

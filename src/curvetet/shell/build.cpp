@@ -11,8 +11,6 @@
 
 namespace curvetet::shell {
 
-double absolute_length(double relative, double absolute, double diagonal); // one_sided.cpp
-
 namespace {
 
 using clock_type = std::chrono::steady_clock;

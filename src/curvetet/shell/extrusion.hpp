@@ -35,9 +35,15 @@ struct ExtrusionOptions {
   double target_thickness = 0.02;   // pillar length to grow to (one side)
   double target_thickness_abs = 0;  // absolute override
   double initial_thickness = 1e-4;  // first try; halved per vertex until valid
-  int max_rounds = 30;              // thickening rounds
+  int max_rounds = 20;              // thickening rounds
   double singular_dot = 1e-3;       // min n.d below this -> singular vertex
 };
+
+// The absolute length an option pair means: `absolute` if > 0, else
+// relative * diagonal.
+inline double absolute_length(double relative, double absolute, double diagonal) {
+  return absolute > 0 ? absolute : relative * diagonal;
+}
 
 enum class Side { inward, outward };
 

@@ -3,6 +3,7 @@
 #include "curvetet/core/error.hpp"
 #include "curvetet/geometry/box_pairs.hpp"
 #include "curvetet/geometry/predicates.hpp"
+#include "curvetet/shell/cap_view.hpp"
 #include "curvetet/shell/exact_dot.hpp"
 #include "curvetet/shell/prism_tets.hpp"
 
@@ -149,6 +150,9 @@ bool prism_section_valid(const Shell& s, int prism, const std::vector<std::vecto
         }
       }
     for (const Vec3* p : {&a, &b, &c}) {
+      // Fast exact path: a corner equal to a middle vertex of this prism is
+      // a vertex of the closed prism.
+      if (*p == s.middle[f[0]] || *p == s.middle[f[1]] || *p == s.middle[f[2]]) continue;
       bool inside = false;
       for (int g : trackers[t])
         if (point_in_prism(s, g, *p)) {
@@ -171,60 +175,7 @@ std::vector<int> invalid_section_prisms(const Shell& s) {
 }
 
 // ---- 3 ----
-namespace {
-
-// Merged vertex id of a cap corner: bottom v -> v; top v -> v when
-// B[v] == T[v] (the pillar is pinched), else n + v.
-struct CapView {
-  const Shell& s;
-  int F, n;
-  std::array<int, 3> ids(int cap) const {
-    const Tri& t = s.faces[cap % F];
-    std::array<int, 3> out;
-    for (int k = 0; k < 3; ++k) out[k] = cap < F || s.bottom[t[k]] == s.top[t[k]] ? t[k] : n + t[k];
-    return out;
-  }
-  const Vec3& point(int id) const { return id < n ? s.bottom[id] : s.top[id - n]; }
-  geometry::Box3 box(int cap) const {
-    const auto i = ids(cap);
-    return geometry::bounding_box(point(i[0]), point(i[1]), point(i[2]));
-  }
-  bool all_pinched(int f) const {
-    const Tri& t = s.faces[f];
-    return s.bottom[t[0]] == s.top[t[0]] && s.bottom[t[1]] == s.top[t[1]] && s.bottom[t[2]] == s.top[t[2]];
-  }
-  // Same rule as check::faces_intersect, on merged ids.
-  bool intersect(int ca, int cb) const {
-    if (ca % F == cb % F && all_pinched(ca % F)) return false;
-    const auto a = ids(ca), b = ids(cb);
-    int shared = 0, ia[3], ib[3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        if (a[i] == b[j]) {
-          ia[shared] = i;
-          ib[shared] = j;
-          ++shared;
-        }
-    auto P = [&](int id) -> const Vec3& { return point(id); };
-    if (shared == 0) return geometry::triangles_intersect(P(a[0]), P(a[1]), P(a[2]), P(b[0]), P(b[1]), P(b[2]));
-    if (shared == 1) {
-      const int i = ia[0], j = ib[0];
-      return geometry::segment_triangle_intersect(P(a[(i + 1) % 3]), P(a[(i + 2) % 3]), P(b[0]), P(b[1]), P(b[2])) ||
-             geometry::segment_triangle_intersect(P(b[(j + 1) % 3]), P(b[(j + 2) % 3]), P(a[0]), P(a[1]), P(a[2]));
-    }
-    if (shared == 2) {
-      const int u = a[ia[0]], v = a[ia[1]];
-      const int pa = a[3 - ia[0] - ia[1]], pb = b[3 - ib[0] - ib[1]];
-      if (orient3d(P(u), P(v), P(pa), P(pb)) != 0) return false;
-      return geometry::coplanar_orientation(P(u), P(v), P(pa), P(pb)) > 0;
-    }
-    return true;
-  }
-};
-
-std::vector<std::pair<int, int>> decide_pairs(const CapView& view, std::vector<std::pair<int, int>> candidates) {
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+std::vector<std::pair<int, int>> decide_cap_pairs(const CapView& view, std::vector<std::pair<int, int>> candidates) {
   std::vector<char> hit(candidates.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 256), [&](const auto& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k)
@@ -233,8 +184,11 @@ std::vector<std::pair<int, int>> decide_pairs(const CapView& view, std::vector<s
   std::vector<std::pair<int, int>> out;
   for (std::size_t k = 0; k < candidates.size(); ++k)
     if (hit[k]) out.push_back(candidates[k]);
+  std::sort(out.begin(), out.end());
   return out;
 }
+
+namespace {
 
 std::vector<geometry::Box3> cap_boxes(const CapView& view, const std::vector<int>& caps) {
   std::vector<geometry::Box3> boxes(caps.size());
@@ -255,13 +209,16 @@ std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<con
   std::sort(mine.begin(), mine.end());
   mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
   const auto pairs = geometry::overlapping_pairs(cap_boxes(view, mine), cap_boxes(view, all));
+  // A pair of two queried caps is reported twice: keep it from its smaller cap.
+  std::vector<char> queried(all.size(), 0);
+  for (int c : mine) queried[c] = 1;
   std::vector<std::pair<int, int>> candidates;
   candidates.reserve(pairs.size());
   for (auto [i, j] : pairs) {
     const int a = mine[i], b = all[j];
-    if (a != b) candidates.emplace_back(std::min(a, b), std::max(a, b));
+    if (a != b && (a < b || !queried[b])) candidates.emplace_back(std::min(a, b), std::max(a, b));
   }
-  return decide_pairs(view, std::move(candidates));
+  return decide_cap_pairs(view, std::move(candidates));
 }
 
 std::vector<std::pair<int, int>> cap_intersections(const Shell& s) {
@@ -269,7 +226,7 @@ std::vector<std::pair<int, int>> cap_intersections(const Shell& s) {
   std::vector<int> all(2 * view.F);
   std::iota(all.begin(), all.end(), 0);
   auto pairs = geometry::overlapping_pairs(cap_boxes(view, all));
-  return decide_pairs(view, std::move(pairs));
+  return decide_cap_pairs(view, std::move(pairs));
 }
 
 // ---- all ----

@@ -7,9 +7,13 @@
 // Local checks return the failing prisms (or cap pairs) among the ones given,
 // sorted; an empty result means "holds on these prisms". They are parallel
 // (oneTBB) and their result does not depend on the thread count.
+#include "curvetet/geometry/box_pairs.hpp"
 #include "curvetet/shell/shell.hpp"
 
+#include <array>
+#include <cstdint>
 #include <span>
+#include <unordered_map>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -62,6 +66,36 @@ std::vector<int> invalid_section_prisms(const Shell& s);
 // Local: pairs (a, b), a < b, with at least one cap of `prisms`, sorted.
 std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<const int> prisms);
 std::vector<std::pair<int, int>> cap_intersections(const Shell& s);
+
+// Spatial hash of the caps (uniform grid, Teschner et al. 2003) for repeated
+// local intersection checks: O(caps near the query) instead of O(all caps).
+// After moving shell vertices, call update() with the prisms whose caps
+// changed (the index keeps each cap's cells; it does not watch the shell).
+// The shell's face list must not change size while the index lives (part 2
+// operations: rebuild or extend it). Not thread-safe for update().
+class CapIndex {
+ public:
+  // cell_size <= 0: the mean cap box extent.
+  explicit CapIndex(const Shell& s, double cell_size = 0);
+  void update(const Shell& s, std::span<const int> prisms);
+  // Same result as cap_intersections(s, prisms), from the index.
+  std::vector<std::pair<int, int>> intersections(const Shell& s, std::span<const int> prisms) const;
+
+ private:
+  struct CellRange {
+    std::array<long long, 3> lo{}, hi{};
+    bool huge = false;
+  };
+  CellRange cells_of(const Vec3& lo, const Vec3& hi) const;
+  void insert(int cap, const CellRange& r);
+  void erase(int cap, const CellRange& r);
+  double cell_ = 1;
+  Vec3 origin_ = Vec3::Zero();
+  std::vector<CellRange> ranges_;         // per cap
+  std::vector<geometry::Box3> boxes_;     // per cap
+  std::unordered_map<std::uint64_t, std::vector<int>> grid_;
+  std::vector<int> huge_; // sorted caps kept out of the grid
+};
 
 // ---- All of them ---------------------------------------------------------
 struct InvariantViolation {

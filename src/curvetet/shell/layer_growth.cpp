@@ -3,12 +3,14 @@
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
 #include "curvetet/mesh/edge_topology.hpp"
-#include "curvetet/shell/invariants.hpp"
+#include "curvetet/shell/invariant_set.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
+#include <memory>
 
 namespace curvetet::shell {
 
@@ -22,6 +24,9 @@ struct Grower {
   std::vector<double>& len;
   mesh::VertexFaces vf;
   std::vector<std::vector<int>> trackers;
+  std::unique_ptr<CapIndex> caps; // built once the initial layer is placed
+  std::vector<std::vector<int>> neighbours;
+  InvariantSet invariants = InvariantSet::shell_invariants();
 
   void place(int v) {
     const Vec3& d = spec.direction[v];
@@ -44,18 +49,9 @@ struct Grower {
   }
 
   // Prisms among (or meeting caps of) `prisms` that break invariant 1-3.
-  std::vector<int> implicated(const std::vector<int>& prisms) const {
-    std::vector<int> bad = non_positive_prisms(s, prisms);
-    const auto sec = invalid_section_prisms(s, prisms, trackers);
-    bad.insert(bad.end(), sec.begin(), sec.end());
-    const int F = s.num_prisms();
-    for (auto [a, b] : cap_intersections(s, prisms)) {
-      bad.push_back(a % F);
-      bad.push_back(b % F);
-    }
-    std::sort(bad.begin(), bad.end());
-    bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
-    return bad;
+  std::vector<int> implicated(const std::vector<int>& prisms) {
+    caps->update(s, prisms);
+    return invariants.implicated(s, prisms, InvariantContext{&trackers, caps.get()});
   }
 
   std::vector<int> vertices_of(const std::vector<int>& prisms) const {
@@ -78,6 +74,9 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
   s.bottom = s.middle;
   len.assign(n, 0.0);
   Grower g{s, spec, len, mesh::build_vertex_faces(n, s.faces), input_trackers(s)};
+  g.neighbours.resize(n);
+  for (const auto& f : s.faces)
+    for (int k = 0; k < 3; ++k) g.neighbours[f[k]].push_back(f[(k + 1) % 3]);
 
   // 1. Initial thin layer.
   auto t0 = clock::now();
@@ -88,6 +87,7 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
       g.place(v);
       changed.push_back(v);
     }
+  g.caps = std::make_unique<CapIndex>(s);
   while (!changed.empty()) {
     const auto bad = g.implicated(g.prisms_of(changed));
     if (bad.empty()) break;
@@ -110,23 +110,35 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
 
   // 2. Thickening rounds.
   t0 = clock::now();
-  std::vector<double> factor(n, 2.0);
+  std::vector<double> factor(n, spec.growth_factor);
   std::vector<char> done(n, 0);
   for (int v = 0; v < n; ++v) done[v] = spec.direction[v].isZero() || len[v] >= spec.target;
   for (int round = 0; round < spec.max_rounds; ++round) {
+    // Proposals, limited to neighbour_ratio x the thinnest non-singular
+    // neighbour so that no vertex outgrows a stuck neighbour (mixed-length
+    // prisms are what blocks growth).
+    const std::vector<double> old = len;
+    std::vector<double> proposal(n, 0.0);
     changed.clear();
-    for (int v = 0; v < n; ++v)
-      if (!done[v]) changed.push_back(v);
+    for (int v = 0; v < n; ++v) {
+      if (done[v]) continue;
+      double cap = spec.target;
+      for (int w : g.neighbours[v])
+        if (!spec.direction[w].isZero()) cap = std::min(cap, spec.neighbour_ratio * old[w]);
+      proposal[v] = std::min(cap, old[v] * factor[v]);
+      if (proposal[v] > old[v]) changed.push_back(v);
+    }
     if (changed.empty()) break;
     ++stats.rounds;
-    const std::vector<double> old = len;
     for (int v : changed) {
-      len[v] = std::min(spec.target, len[v] * factor[v]);
+      len[v] = proposal[v];
       g.place(v);
     }
     std::vector<char> failed(n, 0);
     std::vector<int> check = g.prisms_of(changed);
+    int iterations = 0;
     while (!check.empty()) {
+      ++iterations;
       const auto bad = g.implicated(check);
       if (bad.empty()) break;
       std::vector<int> reverted;
@@ -146,14 +158,15 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
     int grown = 0;
     for (int v : changed) {
       if (failed[v]) {
-        factor[v] = 1 + (factor[v] - 1) / 2;
-        if (factor[v] < 1.01) done[v] = 1;
+        factor[v] = std::sqrt(factor[v]);
+        if (factor[v] < spec.min_factor) done[v] = 1;
       } else {
         ++grown;
         if (len[v] >= spec.target) done[v] = 1;
       }
     }
-    logger().debug("shell: thickening round {}: {} of {} vertices grew", round + 1, grown, changed.size());
+    logger().debug("shell: thickening round {}: {} of {} vertices grew ({} check passes)", round + 1, grown,
+                   changed.size(), iterations);
   }
   stats.seconds_rounds = std::chrono::duration<double>(clock::now() - t0).count();
   if (spec.after_stage) spec.after_stage(s, "thickening");

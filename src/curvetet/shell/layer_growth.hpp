@@ -8,10 +8,11 @@
 //  1. Initial layer: every len = initial; the vertices of failing prisms (or
 //     of intersecting caps) are halved until everything holds.
 //  2. Rounds: every unfinished vertex proposes len * factor (capped at the
-//     target); failing prisms / cap pairs touched by a proposal revert their
+//     target and at neighbour_ratio x the thinnest neighbour); failing prisms / cap pairs touched by a proposal revert their
 //     proposing vertices (re-checking what the reverts touched) until the
-//     shell is valid again. A reverted vertex halves its growth factor and
-//     stops when it drops below 1.01; a vertex reaching the target stops.
+//     shell is valid again. A reverted vertex takes the square root of its
+//     factor and stops when it drops below min_factor; a vertex reaching the
+//     target stops.
 // Only the prisms around changed vertices are re-checked (and their caps
 // against all caps). Deterministic for any thread count.
 #include "curvetet/shell/shell.hpp"
@@ -27,6 +28,9 @@ struct LayerGrowthSpec {
   bool grow_bottom = true, grow_top = true;
   double initial = 0, target = 0; // absolute lengths
   int max_rounds = 30;
+  double growth_factor = 4;   // first proposal: len * 4; square-rooted on each failure
+  double neighbour_ratio = 2; // proposals capped at this x the thinnest neighbour
+  double min_factor = 1.2;    // a vertex whose factor falls below this stops
   // Called after the initial layer and after the rounds (e.g. the global
   // --debug-invariants check); may throw.
   std::function<void(const Shell&, std::string_view stage)> after_stage;

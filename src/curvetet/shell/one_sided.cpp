@@ -8,10 +8,6 @@
 
 namespace curvetet::shell {
 
-double absolute_length(double relative, double absolute, double diagonal) {
-  return absolute > 0 ? absolute : relative * diagonal;
-}
-
 OneSidedExtrusion extrude_one_sided(const mesh::SurfaceMesh& surface, Side side, const ExtrusionOptions& options) {
   if (surface.num_faces() == 0) throw Error(ExitCode::internal, "extrude_one_sided: empty surface");
   Shell s;

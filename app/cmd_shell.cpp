@@ -1,0 +1,132 @@
+// `curvetet shell MESH -o DIR/ [--debug-invariants] [--no-coarsen]`: builds
+// the bijective prismatic shell and writes
+//   DIR/bottom.ply, DIR/middle.ply, DIR/top.ply  (same faces, 0-based ids)
+//   DIR/map.txt      for each input vertex: middle face id and (u, v)
+//                    (layout: io/write_vertex_map.hpp)
+//   DIR/report.json  counts, thickness statistics, singular vertices, timings
+// Everything is computed before the first file is written; each file is
+// written atomically.
+#include "commands.hpp"
+#include "input_stage.hpp"
+
+#include "curvetet/core/error.hpp"
+#include "curvetet/core/log.hpp"
+#include "curvetet/io/write_surface.hpp"
+#include "curvetet/io/write_vertex_map.hpp"
+#include "curvetet/shell/build.hpp"
+#include "curvetet/shell/invariants.hpp"
+
+#include <filesystem>
+#include <memory>
+
+namespace curvetet::app {
+
+namespace {
+
+nlohmann::json stats_json(const shell::ShellBuildStats& s) {
+  return {{"input_vertices", s.input_vertices},
+          {"input_faces", s.input_faces},
+          {"singular_vertices", s.singular_vertices},
+          {"split_edges", s.split_edges},
+          {"initial_halvings", s.initial_halvings},
+          {"thickening_rounds", s.rounds},
+          {"growth_reverts", s.reverts},
+          {"target_pillar", s.target_pillar},
+          {"vertices_at_target", s.vertices_at_target},
+          {"pillar_length", {{"min", s.min_pillar}, {"max", s.max_pillar}, {"mean", s.mean_pillar}}},
+          {"thickness", {{"min", s.min_thickness}, {"max", s.max_thickness}, {"mean", s.mean_thickness}}}};
+}
+
+} // namespace
+
+Command add_shell_command(CLI::App& root) {
+  struct Options {
+    InputOptions input;
+    std::string out_dir;
+    bool debug_invariants = false;
+    bool no_coarsen = false;
+    std::string format = "ply";
+    shell::ShellOptions shell;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = root.add_subcommand("shell", "Build the bijective prismatic shell of a surface and its vertex map");
+  add_input_options(*cmd, o->input);
+  cmd->add_option("-o,--output", o->out_dir, "Output directory (created if missing)")->required();
+  cmd->add_flag("--debug-invariants", o->debug_invariants,
+                "Re-check every shell invariant globally after each stage (slow; fails with exit code 3)");
+  cmd->add_flag("--no-coarsen", o->no_coarsen,
+                "Do not coarsen the shell (currently the default: coarsening is not implemented yet)");
+  cmd->add_option("--format", o->format, "Surface file format")->check(CLI::IsMember({"ply", "obj"}))->capture_default_str();
+  cmd->add_option("--thickness", o->shell.extrusion.target_thickness,
+                  "Target pillar length on each side, relative to the bbox diagonal")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--initial-thickness", o->shell.extrusion.initial_thickness,
+                  "First pillar length tried, relative to the bbox diagonal (halved per vertex until valid)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--rounds", o->shell.extrusion.max_rounds, "Maximum thickening rounds")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  return {cmd, [o]() {
+            Report report;
+            auto in = read_checked_input(o->input, report);
+            o->shell.debug_invariants = o->debug_invariants;
+            shell::ShellBuild built;
+            {
+              StageTimer t(&report, "shell build");
+              built = shell::build_shell(in.mesh, o->shell);
+            }
+            const auto& st = built.stats;
+            const auto& s = built.shell;
+            report["shell"] = stats_json(st);
+            report["shell"]["coarsened"] = false;
+            report["shell"]["prisms"] = s.num_prisms();
+            report["shell"]["seconds"] = {{"isolation_and_directions", st.seconds_isolation},
+                                          {"initial_layer", st.seconds_initial},
+                                          {"thickening", st.seconds_thickening},
+                                          {"map", st.seconds_map},
+                                          {"total", st.seconds_total}};
+            std::vector<int> singular_ids;
+            for (int v = 0; v < s.num_vertices(); ++v)
+              if (s.singular[v]) singular_ids.push_back(v);
+            report["shell"]["singular_vertex_ids"] = singular_ids;
+            if (o->debug_invariants) {
+              StageTimer t(&report, "shell global check");
+              shell::require_valid_shell(s, "shell construction");
+              report["shell"]["global_check"] = "passed";
+            }
+            logger().info("shell: {} prisms, {} singular vertices, thickness min {:.6g} mean {:.6g} (target pillar "
+                          "{:.6g}, {} of {} vertices reached it)",
+                          s.num_prisms(), st.singular_vertices, st.min_thickness, st.mean_thickness, st.target_pillar,
+                          st.vertices_at_target, s.num_vertices());
+
+            std::vector<io::VertexMapRecord> map(s.points.size());
+            for (std::size_t i = 0; i < s.points.size(); ++i)
+              map[i] = {s.points[i].image.prism, s.points[i].image.u, s.points[i].image.v};
+
+            namespace fs = std::filesystem;
+            std::error_code ec;
+            fs::create_directories(o->out_dir, ec);
+            if (ec) throw Error(ExitCode::io, "cannot create output directory " + o->out_dir + ": " + ec.message());
+            const fs::path dir(o->out_dir);
+            const std::string ext = "." + o->format;
+            {
+              StageTimer t(&report, "write shell");
+              io::SurfaceWriteOptions wo;
+              wo.binary = false;
+              io::write_surface((dir / ("bottom" + ext)).string(), shell::bottom_surface(s), wo);
+              io::write_surface((dir / ("middle" + ext)).string(), shell::middle_surface(s), wo);
+              io::write_surface((dir / ("top" + ext)).string(), shell::top_surface(s), wo);
+              io::write_vertex_map((dir / "map.txt").string(), map,
+                                   {"input vertex i -> middle surface (middle" + ext + ") face and (u, v)",
+                                    "point = (1-u-v)*P[F[face][0]] + u*P[F[face][1]] + v*P[F[face][2]]",
+                                    "input: " + o->input.mesh_path});
+            }
+            report.write((dir / "report.json").string());
+            logger().info("shell written to {}", o->out_dir);
+            return 0;
+          }};
+}
+
+} // namespace curvetet::app
