@@ -3,6 +3,7 @@
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/shell/coarsen.hpp"
 #include "curvetet/shell/extrusion.hpp"
 #include "curvetet/volume/assemble.hpp"
 #include "curvetet/volume/fill.hpp"
@@ -57,6 +58,20 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
     report["shell"] = {{"faces", r.shell.num_prisms()},
                        {"singular_vertices", built.stats.singular_vertices},
                        {"min_thickness", built.stats.min_thickness}};
+  }
+
+  if (o.coarsen) {
+    StageTimer t(&report, "coarsen");
+    shell::CoarsenOptions co;
+    co.epsilon = epsilon_rel;
+    co.target_pillar = o.shell.extrusion.target_thickness;
+    co.singular_dot = o.shell.extrusion.singular_dot;
+    co.debug_invariants = o.shell.debug_invariants;
+    const auto c = shell::coarsen_shell(r.shell, co);
+    report["coarsen"] = {{"faces_before", c.faces_before}, {"faces_after", c.faces_after},
+                         {"rounds", c.rounds},             {"max_distance_relative", c.max_distance / diagonal},
+                         {"epsilon_relative", epsilon_rel}};
+    logger().info("coarsened the shell from {} to {} faces", c.faces_before, c.faces_after);
   }
 
   volume::CurvedMiddle middle;

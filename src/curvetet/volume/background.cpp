@@ -2,6 +2,7 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/geometry/box_pairs.hpp"
+#include "curvetet/geometry/predicates.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -17,6 +18,31 @@ using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
 using Tds = CGAL::Triangulation_data_structure_3<Vb>;
 using Delaunay = CGAL::Delaunay_triangulation_3<K, Tds>;
 K::Point_3 cg(const mesh::Vec3& p) { return {p.x(), p.y(), p.z()}; }
+// Conservative: false only when a plane of the tet's faces or the
+// triangle's plane separates them (exact orient3d); callers accept extra
+// pairs (they only cost a later exact test).
+bool may_meet(const std::vector<mesh::Vec3>& p, const std::array<int, 4>& t, const mesh::Tri& f) {
+  for (int k = 0; k < 4; ++k) {
+    const int a = t[(k + 1) % 4], b = t[(k + 2) % 4], c = t[(k + 3) % 4];
+    const int inner = geometry::orient3d(p[a], p[b], p[c], p[t[k]]);
+    bool all_out = true;
+    for (int x : f)
+      if (x == a || x == b || x == c || geometry::orient3d(p[a], p[b], p[c], p[x]) != -inner) { // inside or on
+        all_out = false;
+        break;
+      }
+    if (all_out) return false;
+  }
+  int pos = 0, neg = 0;
+  for (int x : t) {
+    if (x == f[0] || x == f[1] || x == f[2]) continue; // on the plane
+    const int s = geometry::orient3d(p[f[0]], p[f[1]], p[f[2]], p[x]);
+    pos += s > 0;
+    neg += s < 0;
+  }
+  return !(pos == 4 || neg == 4);
+}
+
 } // namespace
 
 BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points) {
@@ -51,9 +77,7 @@ std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, c
   for (auto [i, j] : geometry::overlapping_pairs(tet_boxes, tri_boxes)) {
     const auto& t = bg.tets[i];
     const auto& f = triangles[j];
-    K::Tetrahedron_3 tet(cg(p[t[0]]), cg(p[t[1]]), cg(p[t[2]]), cg(p[t[3]]));
-    K::Triangle_3 tri(cg(p[f[0]]), cg(p[f[1]]), cg(p[f[2]]));
-    if (CGAL::do_intersect(tet, tri)) out[i].push_back(j);
+    if (may_meet(p, t, f)) out[i].push_back(j);
   }
   for (auto& l : out) std::sort(l.begin(), l.end());
   return out;

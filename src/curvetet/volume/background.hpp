@@ -20,7 +20,9 @@ struct BackgroundMesh {
 BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points);
 
 // For every tet, the sorted ids of the triangles (corners index bg.points)
-// that meet the closed tet.
+// that may meet the closed tet: every triangle that does is listed; a few
+// that do not may be (not separated by a face plane of the tet or by the
+// triangle's plane; exact).
 std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles);
 
 } // namespace curvetet::volume

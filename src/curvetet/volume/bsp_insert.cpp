@@ -2,11 +2,13 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
+#include "curvetet/geometry/predicates.hpp"
 #include "curvetet/mesh/edge_topology.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -20,6 +22,9 @@ constexpr double kUnit = std::numeric_limits<double>::epsilon() / 2;
 // Plane {x : n.(x - a) = 0}; a is a double point, n exact; n points to the
 // positive side.
 struct Plane {
+  bool through_triangle = false; // the plane of tri[0..2] (n = (t1-t0)x(t2-t0))
+  Vec3 tri[3];
+  int ids[3] = {-1, -1, -1};     // their vertex ids (known to be on the plane)
   Vec3 a;
   mpq_class n[3];
   Vec3 nd;      // n rounded toward zero
@@ -43,6 +48,57 @@ void cross(const mpq_class u[3], const mpq_class v[3], mpq_class out[3]) {
   out[2] = u[0] * v[1] - u[1] * v[0];
 }
 
+// A surface triangle as seen by the cut filter: its plane, and the planes
+// through its edges perpendicular to it, normals pointing away from it.
+struct TriangleShape {
+  const Plane* plane = nullptr;
+  Plane edge[3];
+  QPoint corner[3];
+};
+
+mpq_class value_q(const Plane& p, const QPoint& q) {
+  return p.n[0] * (q.c[0] - p.a[0]) + p.n[1] * (q.c[1] - p.a[1]) + p.n[2] * (q.c[2] - p.a[2]);
+}
+
+// Exact side of a rational point (double filter first, as Complex::side).
+int side_q(const Plane& p, const QPoint& q) {
+  const Vec3 x(q.c[0].get_d(), q.c[1].get_d(), q.c[2].get_d());
+  const double s = p.nd.dot(x - p.a);
+  const double m = std::max(x.cwiseAbs().maxCoeff(), p.a.cwiseAbs().maxCoeff());
+  const double bound = 128 * std::numeric_limits<double>::epsilon() / 2 * p.nd_l1 * m;
+  if (s > bound) return 1;
+  if (s < -bound) return -1;
+  return sgn(value_q(p, q));
+}
+
+// sign(((q - p) x (x - p)) . n)
+bool same_point(const QPoint& a, const QPoint& b) { return a.c[0] == b.c[0] && a.c[1] == b.c[1] && a.c[2] == b.c[2]; }
+
+int orient_in_plane(const QPoint& p, const QPoint& q, const QPoint& x, const mpq_class n[3]) {
+  if (same_point(x, p) || same_point(x, q)) return 0;
+  {
+    // double filter: coordinates within 2u|.| of the exact ones, n likewise
+    const Vec3 pd(p.c[0].get_d(), p.c[1].get_d(), p.c[2].get_d());
+    const Vec3 qd(q.c[0].get_d(), q.c[1].get_d(), q.c[2].get_d());
+    const Vec3 xd(x.c[0].get_d(), x.c[1].get_d(), x.c[2].get_d());
+    const Vec3 nd(n[0].get_d(), n[1].get_d(), n[2].get_d());
+    const Vec3 u = qd - pd, w = xd - pd;
+    const double val = u.cross(w).dot(nd);
+    const double m = std::max({pd.cwiseAbs().maxCoeff(), qd.cwiseAbs().maxCoeff(), xd.cwiseAbs().maxCoeff()});
+    const double a = u.cwiseAbs().maxCoeff(), b = w.cwiseAbs().maxCoeff();
+    const double bound = 1024 * 1.1102230246251565e-16 * nd.cwiseAbs().sum() * (m * (a + b) + a * b + m * m * 1e-300);
+    if (val > bound) return 1;
+    if (val < -bound) return -1;
+  }
+  mpq_class u[3], w[3], c[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = q.c[k] - p.c[k];
+    w[k] = x.c[k] - p.c[k];
+  }
+  cross(u, w, c);
+  return sgn(c[0] * n[0] + c[1] * n[1] + c[2] * n[2]);
+}
+
 std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
@@ -52,6 +108,10 @@ struct Face {
   std::vector<int> loop; // cyclic, convex, unoriented
   int cell[2] = {-1, -1};
   int tri = -1;          // surface triangle containing the face, or -1
+  // Supporting plane: the cutting plane that made it, or (when null) the
+  // plane of the background points origin[0..2].
+  const Plane* plane = nullptr;
+  std::array<int, 3> origin{-1, -1, -1};
 };
 
 class Complex {
@@ -81,7 +141,7 @@ class Complex {
         const int a = q[(k + 1) % 4], b = q[(k + 2) % 4], c = q[(k + 3) % 4];
         auto [it, fresh] = face_of.try_emplace(tri_key(a, b, c), static_cast<int>(faces.size()));
         if (fresh) {
-          faces.push_back(Face{{a, b, c}, {t, -1}, -1});
+          faces.push_back(Face{{a, b, c}, {t, -1}, -1, nullptr, {a, b, c}});
           add_edges(it->second);
         } else {
           faces[it->second].cell[1] = t;
@@ -93,6 +153,8 @@ class Complex {
 
   // Exact side of vertex i (double filter first).
   int side(const Plane& p, int i) const {
+    if (i == p.ids[0] || i == p.ids[1] || i == p.ids[2]) return 0;
+    if (p.through_triangle && v.exact[i]) return geometry::orient3d(p.tri[0], p.tri[1], p.tri[2], v.d[i]);
     const Vec3& x = v.d[i];
     const double s = p.nd.dot(x - p.a);
     const double m = std::max(x.cwiseAbs().maxCoeff(), p.a.cwiseAbs().maxCoeff());
@@ -121,9 +183,37 @@ class Complex {
     return out;
   }
 
+  // Splits face f (not its cells) by plane p when p crosses it; the cells
+  // keep both pieces (coplanar faces). Returns the new face or -1.
+  int split_face_by(int f, const Plane& p) {
+    bool pos = false, neg = false;
+    for (int i : faces[f].loop) {
+      touch(i);
+      const int s = side(p, i);
+      sgn_[i] = static_cast<signed char>(s);
+      pos |= s > 0;
+      neg |= s < 0;
+    }
+    if (!pos || !neg) return -1;
+    const std::vector<int> l = faces[f].loop;
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      const int a = l[k], b = l[(k + 1) % l.size()];
+      if (sgn_[a] * sgn_[b] >= 0) continue;
+      const mpq_class va = value(p, a), vb = value(p, b);
+      const mpq_class t = va / (va - vb);
+      QPoint w;
+      for (int i = 0; i < 3; ++i) w.c[i] = v.q[a].c[i] + t * (v.q[b].c[i] - v.q[a].c[i]);
+      const int wi = v.add(w);
+      touch(wi);
+      sgn_[wi] = 0;
+      split_edge(a, b, wi);
+    }
+    return std::get<0>(split_face(f));
+  }
+
   // Cuts cell c by plane p (the new cell goes to tet_cells[tet]); returns
   // whether it was split.
-  bool cut(int c, const Plane& p, int tet) {
+  bool cut(int c, const Plane& p, int tet, const TriangleShape* tri = nullptr) {
     std::vector<int> verts = cell_vertices(c);
     bool pos = false, neg = false;
     for (int i : verts) {
@@ -133,8 +223,18 @@ class Complex {
       neg |= s < 0;
     }
     if (!pos || !neg) return false;
-    ++num_cuts;
-    // 1. Split the crossing edges everywhere they appear.
+    // Cheap separation first: the cell beyond one of the triangle's edges.
+    if (tri)
+      for (const auto& e : tri->edge) {
+        bool all_out = true;
+        for (int i : verts)
+          if (side(e, i) < 0) {
+            all_out = false;
+            break;
+          }
+        if (all_out) return false;
+      }
+    // 1. The crossing edges and where they meet the plane.
     std::vector<std::uint64_t> crossing;
     for (int f : cells[c]) {
       const auto& l = faces[f].loop;
@@ -145,13 +245,22 @@ class Complex {
     }
     std::sort(crossing.begin(), crossing.end());
     crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
-    for (auto key : crossing) {
-      const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+    std::vector<QPoint> wq(crossing.size());
+    for (std::size_t e = 0; e < crossing.size(); ++e) {
+      const int a = static_cast<int>(crossing[e] >> 32), b = static_cast<int>(crossing[e] & 0xffffffffu);
       const mpq_class va = value(p, a), vb = value(p, b);
       const mpq_class t = va / (va - vb);
-      QPoint w;
-      for (int i = 0; i < 3; ++i) w.c[i] = v.q[a].c[i] + t * (v.q[b].c[i] - v.q[a].c[i]);
-      const int wi = v.add(w);
+      for (int i = 0; i < 3; ++i) wq[e].c[i] = v.q[a].c[i] + t * (v.q[b].c[i] - v.q[a].c[i]);
+    }
+    // 2. Skip the cut when the triangle misses the cell's interior: then it
+    // misses the relative interior of the section S, and some edge line of S
+    // or of the triangle separates them in the plane (2D separating axes).
+    if (tri && separated(c, crossing, wq, *tri)) return false;
+    ++num_cuts;
+    // 3. Split the crossing edges everywhere they appear.
+    for (std::size_t e = 0; e < crossing.size(); ++e) {
+      const int a = static_cast<int>(crossing[e] >> 32), b = static_cast<int>(crossing[e] & 0xffffffffu);
+      const int wi = v.add(wq[e]);
       touch(wi);
       sgn_[wi] = 0;
       split_edge(a, b, wi);
@@ -222,7 +331,7 @@ class Complex {
     for (int f : minus)
       for (int& x : faces[f].cell)
         if (x == c) x = cm;
-    faces.push_back(Face{std::move(loop), {c, cm}, -1});
+    faces.push_back(Face{std::move(loop), {c, cm}, -1, &p, {-1, -1, -1}});
     add_edges(nf);
     plus.push_back(nf);
     minus.push_back(nf);
@@ -246,6 +355,63 @@ class Complex {
   std::vector<unsigned> mark_;
   unsigned stamp_ = 0;
   std::unordered_map<std::uint64_t, std::vector<int>> edge_faces_;
+
+  bool separated(int c, const std::vector<std::uint64_t>& crossing, const std::vector<QPoint>& wq,
+                 const TriangleShape& tri) {
+    // Section points: cell vertices on the plane, and the crossing points.
+    std::vector<const QPoint*> pts;
+    for (int f : cells[c])
+      for (int i : faces[f].loop)
+        if (sgn_[i] == 0) pts.push_back(&v.q[i]);
+    std::sort(pts.begin(), pts.end());
+    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    for (const auto& w : wq) pts.push_back(&w);
+    for (const auto& e : tri.edge) {
+      bool all_out = true;
+      for (const QPoint* q : pts)
+        if (side_q(e, *q) < 0) {
+          all_out = false;
+          break;
+        }
+      if (all_out) return true;
+    }
+    // Edges of S: per face of the cell, its two section points.
+    auto wpoint = [&](int a, int b) -> const QPoint* {
+      const auto it = std::lower_bound(crossing.begin(), crossing.end(), edge_key(a, b));
+      return &wq[it - crossing.begin()];
+    };
+    for (int f : cells[c]) {
+      const auto& l = faces[f].loop;
+      const QPoint* ends[2];
+      int m = 0;
+      for (std::size_t k = 0; k < l.size() && m <= 2; ++k) {
+        const int a = l[k], b = l[(k + 1) % l.size()];
+        if (sgn_[a] == 0) {
+          if (m < 2) ends[m] = &v.q[a];
+          ++m;
+        }
+        if (sgn_[a] * sgn_[b] < 0) {
+          if (m < 2) ends[m] = wpoint(a, b);
+          ++m;
+        }
+      }
+      if (m != 2) continue;
+      int ref = 0;
+      for (const QPoint* q : pts) {
+        ref = orient_in_plane(*ends[0], *ends[1], *q, tri.plane->n);
+        if (ref != 0) break;
+      }
+      if (ref == 0) continue;
+      bool all_out = true;
+      for (const auto& corner : tri.corner)
+        if (orient_in_plane(*ends[0], *ends[1], corner, tri.plane->n) * ref > 0) {
+          all_out = false;
+          break;
+        }
+      if (all_out) return true;
+    }
+    return false;
+  }
 
   void touch(int i) {
     if (static_cast<int>(mark_.size()) <= i) {
@@ -292,7 +458,7 @@ class Complex {
     const bool first_plus = sgn_[first[1]] > 0;
     const int a = l[z0], b = l[z1];
     const int g = static_cast<int>(faces.size());
-    faces.push_back(Face{second, {faces[f].cell[0], faces[f].cell[1]}, -1});
+    faces.push_back(Face{second, {faces[f].cell[0], faces[f].cell[1]}, -1, faces[f].plane, faces[f].origin});
     faces[f].loop = std::move(first);
     // Edges of g (except the chord) now belong to g instead of f.
     for (std::size_t k = 0; k + 1 < second.size(); ++k) {
@@ -319,7 +485,11 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   // Planes of the triangles (normal = outward face normal) and, for edges
   // whose two triangles are coplanar, a plane through the edge.
   std::vector<Plane> tri_plane(nt);
-  std::vector<std::vector<Plane>> edge_planes(nt);
+  struct EdgePlane {
+    Plane plane;
+    int a, b; // the shared edge
+  };
+  std::vector<std::vector<EdgePlane>> edge_planes(nt);
   {
     for (int t = 0; t < nt; ++t) {
       const auto& f = triangles[t];
@@ -330,6 +500,11 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
       }
       cross(u, w, n);
       tri_plane[t] = make_plane(P[f[0]], n);
+      tri_plane[t].through_triangle = true;
+      for (int k = 0; k < 3; ++k) {
+        tri_plane[t].tri[k] = P[f[k]];
+        tri_plane[t].ids[k] = f[k];
+      }
     }
     auto topo = mesh::build_edge_topology(triangles);
     for (int e = 0; e < topo.num_edges(); ++e) {
@@ -346,11 +521,17 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
       for (int i = 0; i < 3; ++i) u[i] = mpq_class(P[b][i]) - P[a][i];
       cross(u, tri_plane[f0].n, m);
       Plane ep = make_plane(P[a], m);
-      edge_planes[f0].push_back(ep);
-      edge_planes[f1].push_back(ep);
+      edge_planes[f0].push_back({ep, a, b});
+      edge_planes[f1].push_back({ep, a, b});
     }
   }
 
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&](const char* what) {
+    const auto now = std::chrono::steady_clock::now();
+    logger().debug("volume: BSP {} in {:.3f} s", what, std::chrono::duration<double>(now - clock).count());
+    clock = now;
+  };
   // Cut every tet's cells by the planes of the triangles meeting them. A cell
   // whose (slightly grown) box misses the triangle's box cannot meet the
   // triangle and is skipped; cutting more cells than needed is harmless.
@@ -363,9 +544,24 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     tri_box[t].min().array() -= pad;
     tri_box[t].max().array() += pad;
   }
+  lap("triangle/tet incidence");
+  std::vector<TriangleShape> shape(nt);
+  for (int t = 0; t < nt; ++t) {
+    const auto& f = triangles[t];
+    shape[t].plane = &tri_plane[t];
+    for (int k = 0; k < 3; ++k) {
+      shape[t].corner[k] = to_q(P[f[k]]);
+      const Vec3& x = P[f[k]];
+      const Vec3& y = P[f[(k + 1) % 3]];
+      mpq_class u[3], m[3];
+      for (int i = 0; i < 3; ++i) u[i] = mpq_class(y[i]) - x[i];
+      cross(u, tri_plane[t].n, m); // (y - x) x n points away from the triangle
+      shape[t].edge[k] = make_plane(x, m);
+    }
+  }
   for (int T = 0; T < ntet; ++T) {
     for (int t : tet_tris[T]) {
-      auto apply = [&](const Plane& p) {
+      auto apply = [&](const Plane& p, const TriangleShape* filter) {
         const std::size_t count = cx.tet_cells[T].size();
         for (std::size_t k = 0; k < count; ++k) {
           const int c = cx.tet_cells[T][k];
@@ -377,32 +573,82 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
             box.max().array() += pad;
             if (!box.intersects(tri_box[t])) continue;
           }
-          cx.cut(c, p, T);
+          cx.cut(c, p, T, filter);
         }
       };
-      apply(tri_plane[t]);
-      for (const auto& ep : edge_planes[t]) apply(ep);
+      // A background tet (still uncut) whose face plane has the whole
+      // triangle on its outer closed side cannot have the triangle inside.
+      bool misses = false;
+      if (cx.tet_cells[T].size() == 1) {
+        const auto& q = bg.tets[T];
+        for (int k = 0; k < 4 && !misses; ++k) {
+          const Vec3 &a = P[q[(k + 1) % 4]], &b = P[q[(k + 2) % 4]], &c = P[q[(k + 3) % 4]];
+          const int inner = geometry::orient3d(a, b, c, P[q[k]]);
+          misses = true;
+          for (int x : triangles[t])
+            if (x != q[(k + 1) % 4] && x != q[(k + 2) % 4] && x != q[(k + 3) % 4] &&
+                geometry::orient3d(a, b, c, P[x]) == inner)
+              misses = false;
+        }
+      }
+      if (!misses) apply(tri_plane[t], &shape[t]);
     }
   }
 
+  lap("cuts");
   // Faces lying in a surface triangle.
+  // A face in the plane of a triangle whose edge is shared with a coplanar
+  // triangle may straddle that edge: it is split along it first (the face
+  // only, not the cells), so every face lies in one triangle or none.
   std::vector<char> checked(cx.faces.size(), 0);
   for (int T = 0; T < ntet; ++T) {
     if (tet_tris[T].empty()) continue;
+    std::vector<int> work;
     for (int c : cx.tet_cells[T])
-      for (int f : cx.cells[c]) {
-        if (checked[f]) continue;
-        checked[f] = 1;
-        const auto& loop = cx.faces[f].loop;
+      for (int f : cx.cells[c]) work.push_back(f);
+    while (!work.empty()) {
+      const int f = work.back();
+      work.pop_back();
+      if (static_cast<int>(checked.size()) < static_cast<int>(cx.faces.size())) checked.resize(cx.faces.size(), 0);
+      if (checked[f]) continue;
+      checked[f] = 1;
+      {
+        bool split = false;
         for (int t : tet_tris[T]) {
           const Plane& pl = tri_plane[t];
+          // Is the face's supporting plane the triangle's? (exact, on the
+          // triangle's double corners)
+          const Face& face = cx.faces[f];
           bool in_plane = true;
-          for (int i : loop)
-            if (cx.side(pl, i) != 0) {
-              in_plane = false;
+          if (face.plane == &pl) {
+          } else if (face.plane) {
+            for (int k = 0; k < 3 && in_plane; ++k) {
+              const int x = triangles[t][k];
+              const auto& id = face.plane->ids;
+              in_plane = x == id[0] || x == id[1] || x == id[2] || side_q(*face.plane, shape[t].corner[k]) == 0;
+            }
+          } else {
+            const auto& o = face.origin;
+            for (int k = 0; k < 3 && in_plane; ++k) {
+              const int x = triangles[t][k];
+              in_plane = x == o[0] || x == o[1] || x == o[2] ||
+                         geometry::orient3d(P[o[0]], P[o[1]], P[o[2]], P[x]) == 0;
+            }
+          }
+          if (!in_plane) continue;
+          for (const auto& ep : edge_planes[t]) {
+            const int g = cx.split_face_by(f, ep.plane);
+            if (g >= 0) {
+              checked.resize(cx.faces.size(), 0);
+              checked[f] = 0;
+              work.push_back(f);
+              work.push_back(g);
+              split = true;
               break;
             }
-          if (!in_plane) continue;
+          }
+          if (split) break;
+          const auto& loop = cx.faces[f].loop;
           // centroid inside the closed triangle?
           QPoint g;
           for (int i : loop)
@@ -428,8 +674,10 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
           }
         }
       }
+    }
   }
 
+  lap("surface faces");
   // Winding numbers by crossing surface faces, from the hull (winding 0).
   const int ncell = static_cast<int>(cx.cells.size());
   constexpr int kUnset = std::numeric_limits<int>::min();
@@ -468,6 +716,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     }
   }
 
+  lap("winding numbers");
   // Tetrahedralize the kept cells; fans on faces are shared.
   InsertedSurface out;
   out.num_cuts = cx.num_cuts;
@@ -511,6 +760,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   }
   for (int f = 0; f < static_cast<int>(cx.faces.size()); ++f)
     if (cx.faces[f].tri >= 0) face_triangles(f, out.refined[cx.faces[f].tri]);
+  lap("cell tetrahedralization");
   out.vertices = std::move(cx.v);
   return out;
 }

@@ -2,6 +2,7 @@
 
 #include "curvetet/geometry/predicates.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace curvetet::volume::exact {
@@ -46,10 +47,28 @@ int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d)
   return sgn(det);
 }
 
+namespace {
+// Sign of det[b-a, c-a, d-a] from double approximations whose coordinates
+// are within 2u|x| of the exact ones (u = 2^-53); 0 when undecided. The bound
+// covers the approximation and the rounding of the evaluation with a wide
+// margin (the first-order error is below 100 u (M L^2 + L^3)).
+int orient_filter(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const double det = u.dot(v.cross(w));
+  const double m = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), c.cwiseAbs().maxCoeff(),
+                             d.cwiseAbs().maxCoeff()});
+  const double l = std::max({u.cwiseAbs().maxCoeff(), v.cwiseAbs().maxCoeff(), w.cwiseAbs().maxCoeff()});
+  const double bound = 1024 * 1.1102230246251565e-16 * (m * l * l + l * l * l);
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return 0;
+}
+} // namespace
+
 int Vertices::add(const QPoint& p) {
   q.push_back(p);
   const bool e = is_double(p);
-  d.push_back(nearest_double(p));
+  d.push_back(Vec3(p.c[0].get_d(), p.c[1].get_d(), p.c[2].get_d()));
   exact.push_back(e);
   return size() - 1;
 }
@@ -69,12 +88,13 @@ void Vertices::set(int i, const Vec3& p) {
 
 void Vertices::set(int i, const QPoint& p) {
   q[i] = p;
-  d[i] = nearest_double(p);
+  d[i] = Vec3(p.c[0].get_d(), p.c[1].get_d(), p.c[2].get_d());
   exact[i] = is_double(p);
 }
 
 int Vertices::orient(int a, int b, int c, int e) const {
   if (exact[a] && exact[b] && exact[c] && exact[e]) return geometry::orient3d(d[a], d[b], d[c], d[e]);
+  if (const int s = orient_filter(d[a], d[b], d[c], d[e])) return s;
   return exact::orient3d(q[a], q[b], q[c], q[e]);
 }
 
@@ -86,6 +106,11 @@ int Vertices::orient_at(const std::array<int, 4>& t, int v, const Vec3& p) const
     const Vec3* x[4];
     for (int k = 0; k < 4; ++k) x[k] = t[k] == v ? &p : &d[t[k]];
     return geometry::orient3d(*x[0], *x[1], *x[2], *x[3]);
+  }
+  {
+    const Vec3* y[4];
+    for (int k = 0; k < 4; ++k) y[k] = t[k] == v ? &p : &d[t[k]];
+    if (const int s = orient_filter(*y[0], *y[1], *y[2], *y[3])) return s;
   }
   QPoint pq = to_q(p);
   const QPoint* x[4];

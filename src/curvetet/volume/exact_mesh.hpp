@@ -26,7 +26,8 @@ bool is_double(const QPoint& p);
 int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d);
 
 // Vertices hold an exact position q and a double d; when exact[v] is true, d
-// is q exactly and the fast double predicates apply.
+// is q exactly and the fast double predicates apply; otherwise d is q rounded
+// toward zero (within 2u|q| per coordinate), used by the floating filters.
 struct Vertices {
   std::vector<QPoint> q;
   std::vector<Vec3> d;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <set>
 #include <unordered_map>
 
 namespace curvetet::volume {
@@ -72,9 +73,22 @@ mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& opt
   hi.array() += margin;
   // The inside needs no box: the offset surface lies in its vertices' hull.
   const bool inward = s.side == OffsetSide::inward;
-  if (!inward)
+  if (!inward) {
     for (int c = 0; c < 8; ++c)
       pts.emplace_back(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
+    // A coarse grid inside the box keeps the background tets small, so each
+    // meets few triangles (fewer cuts). Points equal to an offset vertex are
+    // skipped (the background points must be distinct).
+    std::set<std::array<double, 3>> taken;
+    for (const auto& p : s.offset) taken.insert({p.x(), p.y(), p.z()});
+    constexpr int kGrid = 8;
+    for (int i = 1; i < kGrid; ++i)
+      for (int j = 1; j < kGrid; ++j)
+        for (int k = 1; k < kGrid; ++k) {
+          const mesh::Vec3 p = lo + (hi - lo).cwiseProduct(mesh::Vec3(i, j, k) / kGrid);
+          if (taken.insert({p.x(), p.y(), p.z()}).second) pts.push_back(p);
+        }
+  }
   bg = delaunay(pts);
   stats.background_tets = bg.tets.size();
 

@@ -33,6 +33,8 @@ double amips(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 namespace {
 
 using Tet = std::array<int, 4>;
+// Largest AMIPS energy a collapse may give a tet whose 4 vertices are frozen.
+constexpr double kFrozenTetLimit = 6.0;
 
 class Optimizer {
  public:
@@ -84,14 +86,15 @@ class Optimizer {
     return true;
   }
 
-  // --- smoothing: descend the star's AMIPS sum, keep every tet positive. ---
+  // --- smoothing: descend the star's sum of squared AMIPS energies without
+  // raising its maximum; every tet stays positive (exact). ---
   bool smooth(int v) {
     if (m_.frozen[v] || vt_[v].empty()) return false;
     const Vec3 p0 = m_.v.d[v];
     double e0 = 0, max0 = 0, len = 0;
     for (int t : vt_[v]) {
       const double e = energy(m_.tets[t]);
-      e0 += e;
+      e0 += e * e; // squared: the worst tets dominate
       max0 = std::max(max0, e);
       for (int x : m_.tets[t]) len += (m_.v.d[x] - p0).norm();
     }
@@ -101,7 +104,7 @@ class Optimizer {
       double s = 0, m = 0;
       for (int t : vt_[v]) {
         const double e = energy_at(m_.tets[t], v, p);
-        s += e;
+        s += e * e;
         m = std::max(m, e);
       }
       if (mx) *mx = m;
@@ -171,7 +174,12 @@ class Optimizer {
       for (int& x : n)
         if (x == v) x = u;
       if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
-      new_max = std::max(new_max, energy(n));
+      const double e = energy(n);
+      // A tet on frozen vertices only can never be smoothed: keep it good.
+      if (require_quality && e > kFrozenTetLimit && m_.frozen[n[0]] && m_.frozen[n[1]] && m_.frozen[n[2]] &&
+          m_.frozen[n[3]])
+        return false;
+      new_max = std::max(new_max, e);
     }
     if (removed.empty()) return false; // not an edge
     if (require_quality && !(new_max <= old_max)) return false;

@@ -1,0 +1,71 @@
+#include "curvetet/volume/tetrahedralize.hpp"
+
+#include "curvetet/core/error.hpp"
+#include "curvetet/core/log.hpp"
+#include "curvetet/shell/extrusion.hpp"
+
+#include <chrono>
+
+namespace curvetet::volume {
+namespace {
+
+LayeredSurface extrude(const mesh::SurfaceMesh& surface, OffsetSide side, double thickness, int* singular) {
+  shell::ExtrusionOptions eo;
+  eo.target_thickness = thickness;
+  eo.max_rounds = 10; // a thin layer is enough here; thickening rounds cost time
+  auto ex = shell::extrude_one_sided(surface, side == OffsetSide::inward ? shell::Side::inward : shell::Side::outward,
+                                     eo);
+  LayeredSurface l;
+  l.surface = surface;
+  l.side = side;
+  l.offset = std::move(ex.offset);
+  *singular = 0;
+  for (char s : ex.singular) *singular += s != 0;
+  return l;
+}
+
+void require_ok(const TetMeshCheck& c, const char* part) {
+  if (!c.ok()) throw Error(ExitCode::internal, fmt::format("volume: {} mesh fails verification: {}", part, c.text()));
+}
+
+} // namespace
+
+TetrahedralizeResult tetrahedralize(const mesh::SurfaceMesh& surface, const TetrahedralizeOptions& options) {
+  TetrahedralizeResult r;
+  const int n = surface.num_vertices();
+  auto t0 = std::chrono::steady_clock::now();
+  auto inner = extrude(surface, OffsetSide::inward, options.layer_thickness, &r.singular_inward);
+  r.seconds_extrusion = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.mesh = fill_layered(inner, options.fill, &r.interior);
+  r.interior_check = verify_tet_mesh(r.mesh, surface.faces);
+  require_ok(r.interior_check, "interior");
+  if (!options.exterior) return r;
+
+  t0 = std::chrono::steady_clock::now();
+  auto outer = extrude(surface, OffsetSide::outward, options.layer_thickness, &r.singular_outward);
+  r.seconds_extrusion += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  auto ext = fill_layered(outer, options.fill, &r.exterior);
+  std::vector<mesh::Tri> reversed;
+  reversed.reserve(surface.faces.size());
+  for (const auto& f : surface.faces) reversed.push_back({f[0], f[2], f[1]});
+  Box box{ext.vertices[0], ext.vertices[0]};
+  for (const auto& p : ext.vertices) {
+    box.lo = box.lo.cwiseMin(p);
+    box.hi = box.hi.cwiseMax(p);
+  }
+  r.exterior_check = verify_tet_mesh(ext, reversed, box);
+  require_ok(r.exterior_check, "exterior");
+  // Merge: both parts share the surface vertices [0, n).
+  const int base = r.mesh.num_vertices() - n;
+  for (int v = n; v < ext.num_vertices(); ++v) r.mesh.vertices.push_back(ext.vertices[v]);
+  for (std::size_t t = 0; t < ext.tets.size(); ++t) {
+    auto q = ext.tets[t];
+    for (int& x : q)
+      if (x >= n) x += base;
+    r.mesh.tets.push_back(q);
+    r.mesh.tags.push_back(ext.tags[t]);
+  }
+  return r;
+}
+
+} // namespace curvetet::volume

@@ -1,0 +1,34 @@
+#pragma once
+// `curvetet tetrahedralize`: boundary-preserving tetrahedralization of a
+// closed surface (issue 6). The layer offsets come from the shell's one-sided
+// extrusion (shell::extrude_one_sided), the fill from fill_layered().
+//
+// Output: vertices [0, n) are the surface's vertices bit for bit; tag 1 = the
+// interior (bounded exactly by the surface faces), tag 2 = with `exterior`,
+// the region between the surface and a box (bounded by the reversed surface
+// faces and the box). verify_tet_mesh() has been run on each part; a failure
+// throws Error(internal).
+#include "curvetet/mesh/surface_mesh.hpp"
+#include "curvetet/mesh/linear_tet_mesh.hpp"
+#include "curvetet/volume/fill.hpp"
+#include "curvetet/volume/verify.hpp"
+
+namespace curvetet::volume {
+
+struct TetrahedralizeOptions {
+  bool exterior = false;
+  double layer_thickness = 0.01; // target pillar length, × bbox diagonal
+  FillOptions fill;              // fill.box_margin: box margin, × diagonal
+};
+
+struct TetrahedralizeResult {
+  mesh::LinearTetMesh mesh;
+  FillStats interior, exterior;
+  TetMeshCheck interior_check, exterior_check;
+  int singular_inward = 0, singular_outward = 0;
+  double seconds_extrusion = 0;
+};
+
+TetrahedralizeResult tetrahedralize(const mesh::SurfaceMesh& surface, const TetrahedralizeOptions& options = {});
+
+} // namespace curvetet::volume

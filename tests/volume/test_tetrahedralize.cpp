@@ -1,0 +1,162 @@
+// tetrahedralize() end to end with the shell's one-sided extrusion: singular
+// vertices (zero-length pillars), very thin parts, the exterior, and the CLI
+// (the written .msh read back). Every case checks the exact contract: doubles,
+// positive tets (exact orient3d), boundary = input triangles, interior faces
+// shared by two tets, volume = enclosed volume.
+#include "shapes.hpp"
+#include "shell/tiny_meshes.hpp"
+
+#include "curvetet/io/msh.hpp"
+#include "curvetet/io/write_surface.hpp"
+#include "curvetet/volume/tetrahedralize.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace curvetet {
+namespace {
+
+volume::TetrahedralizeResult expect_exact(const mesh::SurfaceMesh& s, bool exterior = false) {
+  volume::TetrahedralizeOptions o;
+  o.exterior = exterior;
+  auto r = volume::tetrahedralize(s, o);
+  for (int v = 0; v < s.num_vertices(); ++v)
+    EXPECT_EQ(std::memcmp(r.mesh.vertices[v].data(), s.vertices[v].data(), 3 * sizeof(double)), 0) << v;
+  mesh::LinearTetMesh inside = r.mesh;
+  inside.tets.clear();
+  for (int t = 0; t < r.mesh.num_tets(); ++t)
+    if (r.mesh.tags[t] == 1) inside.tets.push_back(r.mesh.tets[t]);
+  const auto check = volume::verify_tet_mesh(inside, s.faces); // recomputed here, not trusted
+  EXPECT_TRUE(check.ok()) << check.text();
+  const double vol = test::enclosed_volume(s);
+  EXPECT_NEAR(check.volume, vol, 1e-9 * std::abs(vol));
+  return r;
+}
+
+// Thin slab [0,1]^2 x [0,t]: the layer must be thinner than t/2.
+mesh::SurfaceMesh slab(double t) {
+  auto m = test::unit_cube();
+  for (auto& v : m.vertices) v.z() *= t;
+  return m;
+}
+
+// Triangular prism whose cross-section has a 0.01 rad angle: a sharp, thin
+// wedge edge along x.
+//        2
+//       /|      cross-section in (y, z): 0 = (0,0), 1 = (1,0),
+//      / |      2 = (1, 0.01); extruded along x from 0 to 1.
+//     0--1
+mesh::SurfaceMesh thin_wedge() {
+  mesh::SurfaceMesh m;
+  const double h = 0.01;
+  for (double x : {0.0, 1.0}) {
+    m.vertices.emplace_back(x, 0, 0);
+    m.vertices.emplace_back(x, 1, 0);
+    m.vertices.emplace_back(x, 1, h);
+  }
+  m.faces = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  return m;
+}
+
+// A needle: 8-sided double cone, radius 0.01, length 2 (thin and sharp).
+mesh::SurfaceMesh needle() {
+  mesh::SurfaceMesh m;
+  const int k = 8;
+  m.vertices.emplace_back(0, 0, 1);  // 0: tip
+  m.vertices.emplace_back(0, 0, -1); // 1: other tip
+  for (int i = 0; i < k; ++i) {
+    const double a = 2 * M_PI * i / k;
+    m.vertices.emplace_back(0.01 * std::cos(a), 0.01 * std::sin(a), 0);
+  }
+  for (int i = 0; i < k; ++i) {
+    const int r0 = 2 + i, r1 = 2 + (i + 1) % k;
+    m.faces.push_back({0, r0, r1});
+    m.faces.push_back({1, r1, r0});
+  }
+  return m;
+}
+
+TEST(VolumeTetrahedralize, ThinNeedle) { expect_exact(needle()); }
+
+// The origin of the folded star sees faces with normals +z and -z: no
+// pillar direction exists, the extrusion pins it (zero-length pillar).
+TEST(VolumeTetrahedralize, SingularFoldedStar) {
+  const auto r = expect_exact(shell::test::folded_star());
+  EXPECT_GE(r.singular_inward, 1); // the case this test is about
+}
+
+TEST(VolumeTetrahedralize, VeryThinSlab) { expect_exact(slab(1e-4)); }
+
+TEST(VolumeTetrahedralize, SharpThinWedge) { expect_exact(thin_wedge()); }
+
+TEST(VolumeTetrahedralize, NonConvexSphereWithDent) {
+  auto m = test::icosphere(2);
+  for (auto& v : m.vertices)
+    if (v.z() > 0.8) v.z() = 1.6 - v.z(); // push the cap inward: a dent
+  expect_exact(m);
+}
+
+TEST(VolumeTetrahedralize, InteriorAndExteriorShareTheSurface) {
+  const auto m = test::octahedron();
+  const auto r = expect_exact(m, true);
+  mesh::LinearTetMesh outside = r.mesh;
+  outside.tets.clear();
+  for (int t = 0; t < r.mesh.num_tets(); ++t)
+    if (r.mesh.tags[t] == 2) outside.tets.push_back(r.mesh.tets[t]);
+  ASSERT_FALSE(outside.tets.empty());
+  std::vector<mesh::Tri> reversed;
+  for (auto f : m.faces) reversed.push_back({f[0], f[2], f[1]});
+  Eigen::Vector3d lo = r.mesh.vertices[0], hi = lo;
+  for (const auto& p : r.mesh.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const auto check = volume::verify_tet_mesh(outside, reversed, volume::Box{lo, hi});
+  EXPECT_TRUE(check.ok()) << check.text();
+  const double box = (hi - lo).prod();
+  EXPECT_NEAR(check.volume, box - test::enclosed_volume(m), 1e-9 * box);
+  // the whole mesh: only the box is boundary
+  const auto all = volume::verify_tet_mesh(r.mesh, {}, volume::Box{lo, hi});
+  EXPECT_TRUE(all.ok()) << all.text();
+}
+
+mesh::LinearTetMesh read_back(const std::string& path) { return mesh::to_linear_mesh(io::read_msh(path)); }
+
+TEST(VolumeTetrahedralize, CommandWritesAVerifiableMsh) {
+  const auto dir = std::filesystem::temp_directory_path() / "curvetet_test_tetrahedralize";
+  std::filesystem::create_directories(dir);
+  const auto m = needle();
+  io::write_surface((dir / "crown.off").string(), m);
+  const auto out = (dir / "crown.msh").string();
+  std::filesystem::remove(out);
+  const std::string cmd = std::string(CURVETET_BINARY) + " -q tetrahedralize " + (dir / "crown.off").string() +
+                          " -o " + out;
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const auto back = read_back(out);
+  ASSERT_GE(back.num_vertices(), m.num_vertices());
+  for (int v = 0; v < m.num_vertices(); ++v) EXPECT_EQ(back.vertices[v], m.vertices[v]) << v;
+  const auto check = volume::verify_tet_mesh(back, m.faces);
+  EXPECT_TRUE(check.ok()) << check.text();
+  // Gmsh itself reads the file and finds the same tets.
+  if (std::filesystem::exists("/usr/bin/python3")) {
+    const auto count = (dir / "count.txt").string();
+    const std::string py = "/usr/bin/python3 -c \"import gmsh; gmsh.initialize(); "
+                           "gmsh.option.setNumber('General.Terminal', 0); gmsh.open('" + out + "'); "
+                           "t, e, n = gmsh.model.mesh.getElements(3); "
+                           "open('" + count + "', 'w').write(str(sum(len(x) for x in e)))\"";
+    if (std::system(py.c_str()) == 0) {
+      std::ifstream in(count);
+      long n = -1;
+      in >> n;
+      EXPECT_EQ(n, back.num_tets());
+    }
+  }
+}
+
+} // namespace
+} // namespace curvetet
