@@ -2,8 +2,10 @@
 # End-to-end harness: runs the curvetet main command on models and prints a
 # Markdown table of wall time, peak memory and exit code per model.
 # Usage: bench/e2e.sh [--args "EXTRA CURVETET ARGS"] [MESH...]
+#   E2E_TIMEOUT=seconds per model (default 1800; exit 124 = timed out)
 #   default meshes: every ../shared/data/good/*.off, smallest first.
-# Extra columns come from each run's report (--report): faces of the input.
+# Extra columns come from each run's report (--report): input faces, output
+# tets, boundary faces and quality (when the run writes a mesh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 extra=""
@@ -15,15 +17,24 @@ fi
 bin=./build/app/curvetet
 [ -x "$bin" ] || bash scripts/build.sh curvetet_cli >/dev/null
 out=$(mktemp -d)
-echo "| model | input faces | wall s | peak MiB | exit |"
-echo "|---|---:|---:|---:|---:|"
+echo "| model | input faces | tets | boundary faces | max AMIPS | min scaled Jacobian | wall s | peak MiB | exit |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
 for m in "${meshes[@]}"; do
   name=$(basename "$m" .off)
   set +e
-  /usr/bin/time -f "%e %M" -o "$out/time" "$bin" -q "$m" --report "$out/$name.json" $extra >/dev/null 2>"$out/$name.log"
+  /usr/bin/time -f "%e %M" -o "$out/time" timeout "${E2E_TIMEOUT:-1800}" "$bin" -q "$m" --report "$out/$name.json" $extra >/dev/null 2>"$out/$name.log"
   code=$?
   set -e
   read -r wall kib < <(tail -1 "$out/time")
-  faces=$(/usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['input']['faces'])" "$out/$name.json" 2>/dev/null || echo "?")
-  echo "| $name | $faces | $wall | $((kib / 1024)) | $code |"
+  row=$(/usr/bin/python3 - "$out/$name.json" <<'PY' 2>/dev/null || echo "? | - | - | - | -"
+import json, sys
+r = json.load(open(sys.argv[1]))
+v = r.get("verification", {})
+q = v.get("quality", {})
+fmt = lambda x: "-" if x is None else ("%.4g" % x if isinstance(x, float) else str(x))
+print(" | ".join(fmt(x) for x in (r["input"]["faces"], v.get("tets"), v.get("boundary_triangles"),
+                                     q.get("max_amips"), q.get("min_scaled_jacobian"))))
+PY
+)
+  echo "| $name | $row | $wall | $((kib / 1024)) | $code |"
 done
