@@ -2,6 +2,7 @@
 // with the whole-mesh verifier (certified positivity, conformity, boundary).
 #include "curvetet/check/verify_tet_mesh.hpp"
 #include "curvetet/geometry/predicates.hpp"
+#include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/volume/assemble.hpp"
 
@@ -62,6 +63,25 @@ TEST(Assemble, FlatShellTilesTheMiddleTetExactly) {
     volume += (m.nodes[n[1]] - m.nodes[n[0]]).cross(m.nodes[n[2]] - m.nodes[n[0]]).dot(m.nodes[n[3]] - m.nodes[n[0]]) / 6;
   }
   EXPECT_NEAR(volume, 1.0 / 6.0, 1e-15);
+  auto v = check::verify_tet_mesh(m, {});
+  EXPECT_TRUE(v.ok()) << v.text();
+}
+
+TEST(Assemble, FlatMiddleGivesStraightSlabTetsEvenOverNonPlanarQuads) {
+  // Regression (nefertiti): the bilinear slab map of a prism whose side quads
+  // are not planar folded tets that invariant 1 had proven positive as
+  // straight tets. A twisted bottom makes the side quads non-planar here.
+  auto s = tet_shell(0, false);
+  s.bottom[1] += Vec3(0.0, 0.05, -0.04);
+  auto m = volume::assemble_curved_mesh(s, bottom_fill(s), 3);
+  for (int t = 0; t < m.num_tets(); ++t) {
+    const int* n = m.tet(t);
+    for (int i = 4; i < m.tet_nodes(); ++i) { // every node on the straight tet
+      const auto w = highorder::tet_node_barycentric(3, i);
+      const Vec3 affine = w[0] * m.nodes[n[0]] + w[1] * m.nodes[n[1]] + w[2] * m.nodes[n[2]] + w[3] * m.nodes[n[3]];
+      EXPECT_LT((m.nodes[n[i]] - affine).norm(), 1e-15);
+    }
+  }
   auto v = check::verify_tet_mesh(m, {});
   EXPECT_TRUE(v.ok()) << v.text();
 }

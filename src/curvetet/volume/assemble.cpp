@@ -122,7 +122,10 @@ mesh::TetMesh assemble_curved_mesh(const CurvedMiddle& s, const mesh::LinearTetM
       const int g = numbering.tet_nodes[t * per_tet + i];
       const auto lambda = highorder::tet_node_barycentric(order, i);
       mesh::Vec3 x = mesh::Vec3::Zero();
-      if (src.face < 0) {
+      // A flat middle needs no slab map: the straight canonical tets are the
+      // ones invariant 1 proves positive, while the bilinear slab map of a
+      // non-planar quad can fold them.
+      if (src.face < 0 || s.degree == 1) {
         for (int j = 0; j < 4; ++j) x += lambda[j] * corners[tets[t][j]];
       } else if (straight_near_pinch(src, lambda)) {
         for (int j = 0; j < 4; ++j) x += lambda[j] * corners[tets[t][j]];

@@ -5,7 +5,9 @@
 // order P with shared (conforming) high-order nodes. The boundary of the
 // result is the curved middle surface.
 //
-// Slab tets are the images of reference-slab tets under the curved slab map
+// With a flat middle (degree 1) slab tets are the straight canonical tets
+// (positive by the shell's invariant 1). With a curved middle they are the
+// images of reference-slab tets under the curved slab map
 //   x(u, v, w) = (1 - w) B_f(u, v) + w M_f(u, v),
 // B_f the flat bottom triangle, M_f the degree-k middle patch (Lagrange nodes
 // in internal order). Restricted to a tet this map has total degree k + 1, so
