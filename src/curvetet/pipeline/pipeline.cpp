@@ -77,7 +77,7 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
   volume::CurvedMiddle middle;
   {
     StageTimer t(&report, "middle surface");
-    middle = linear_middle(r.shell, o.order - 1);
+    middle = linear_middle(r.shell, 1); // flat until the curved fit (issue 7) provides degree P-1
   }
 
   mesh::LinearTetMesh fill;
