@@ -322,13 +322,18 @@ void scale_r(const Shape& s, VecR& c) {
   for (int i = 0; i < s.size(); ++i) c.r[i] = (c.r[i] * ws[i] + kUnit * norm_inf(c.v[i])) * kInflate;
 }
 
+// 1-norm of every coefficient (input of the radius of a product).
+template <class V>
+std::vector<double> norms1(const V& values) {
+  std::vector<double> n(values.size());
+  for (std::size_t i = 0; i < n.size(); ++i) n[i] = norm1(values[i]);
+  return n;
+}
+
 VecR conv_cross_r(const ConvTable& t, const VecR& a, const VecR& b) {
   VecR h;
   h.v = conv_cross<double>(t, a.v, b.v);
-  std::vector<double> na(a.v.size()), nb(b.v.size());
-  for (std::size_t i = 0; i < na.size(); ++i) na[i] = norm1(a.v[i]);
-  for (std::size_t i = 0; i < nb.size(); ++i) nb[i] = norm1(b.v[i]);
-  h.r = conv_radius(t, na, a.r, nb, b.r, 2, gamma(2 * t.max_pairs + 2));
+  h.r = conv_radius(t, norms1(a.v), a.r, norms1(b.v), b.r, 2, gamma(2 * t.max_pairs + 2));
   return h;
 }
 
@@ -336,10 +341,7 @@ VecR conv_cross_r(const ConvTable& t, const VecR& a, const VecR& b) {
 ScalarR conv_dot_r(const ConvTable& t, const VecR& a, const VecR& h) {
   ScalarR d;
   d.v = conv_dot<double>(t, a.v, h.v);
-  std::vector<double> na(a.v.size()), nh(h.v.size());
-  for (std::size_t i = 0; i < na.size(); ++i) na[i] = norm1(a.v[i]);
-  for (std::size_t i = 0; i < nh.size(); ++i) nh[i] = norm1(h.v[i]);
-  d.r = conv_radius(t, na, a.r, nh, h.r, 3, gamma(3 * t.max_pairs + 2));
+  d.r = conv_radius(t, norms1(a.v), a.r, norms1(h.v), h.r, 3, gamma(3 * t.max_pairs + 2));
   return d;
 }
 
