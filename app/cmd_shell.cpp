@@ -1,7 +1,10 @@
-// `curvetet shell MESH -o DIR/ [--epsilon E | --epsilon-abs A] [--no-coarsen]
-// [--debug-invariants]`: builds the bijective prismatic shell, coarsens it
-// under the distance bound (shell/coarsen.hpp) and writes
+// `curvetet shell MESH -o DIR/ [--order P] [--epsilon E | --epsilon-abs A]
+// [--no-coarsen] [--debug-invariants]`: builds the bijective prismatic shell,
+// coarsens it under the distance bound (shell/coarsen.hpp), with --order P >= 3
+// fitting a curved middle of degree P-1 in every operation, and writes
 //   DIR/bottom.ply, DIR/middle.ply, DIR/top.ply  (same faces, 0-based ids)
+//   DIR/middle.msh, DIR/middle.vtu  the (curved) middle surface as
+//                    degree-(P-1) triangles (order 1 without --order)
 //   DIR/map.txt      for each input vertex: middle face id and (u, v)
 //                    (layout: io/write_vertex_map.hpp)
 //   DIR/report.json  counts, thickness statistics, singular vertices, timings,
@@ -14,10 +17,13 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
+#include "curvetet/io/msh.hpp"
+#include "curvetet/io/vtu.hpp"
 #include "curvetet/io/write_surface.hpp"
 #include "curvetet/io/write_vertex_map.hpp"
 #include "curvetet/shell/build.hpp"
 #include "curvetet/shell/coarsen.hpp"
+#include "curvetet/shell/curved_middle.hpp"
 #include "curvetet/shell/invariants.hpp"
 
 #include <filesystem>
@@ -80,6 +86,7 @@ Command add_shell_command(CLI::App& root) {
     std::string out_dir;
     bool debug_invariants = false;
     bool no_coarsen = false;
+    int order = 2;
     std::string format = "ply";
     shell::ShellOptions shell;
     shell::CoarsenOptions coarsen;
@@ -91,6 +98,10 @@ Command add_shell_command(CLI::App& root) {
   cmd->add_flag("--debug-invariants", o->debug_invariants,
                 "Re-check every shell invariant globally after each stage (slow; fails with exit code 3)");
   cmd->add_flag("--no-coarsen", o->no_coarsen, "Write the shell as built, without coarsening");
+  cmd->add_option("--order", o->order,
+                  "Output order P: the middle surface is curved of degree P-1 (2 = flat middle)")
+      ->check(CLI::Range(2, 6))
+      ->capture_default_str();
   auto* eps = cmd->add_option("--epsilon", o->coarsen.epsilon,
                               "Distance bound for coarsening, relative to the bbox diagonal")
                   ->check(CLI::PositiveNumber)
@@ -152,7 +163,9 @@ Command add_shell_command(CLI::App& root) {
               o->coarsen.debug_invariants = o->debug_invariants;
               o->coarsen.target_pillar = o->shell.extrusion.target_thickness;
               o->coarsen.singular_dot = o->shell.extrusion.singular_dot;
-              const auto c = shell::coarsen_shell(built.shell, o->coarsen);
+              std::unique_ptr<shell::MiddleFit> fit;
+              if (o->order > 2) fit = std::make_unique<shell::CurvedMiddleFit>(o->order - 1);
+              const auto c = shell::coarsen_shell(built.shell, o->coarsen, fit.get());
               report["coarsen"] = coarsen_json(c);
               // The written shell is the coarse one (vertices renumbered).
               report["shell"]["prisms"] = s.num_prisms();
@@ -182,6 +195,9 @@ Command add_shell_command(CLI::App& root) {
               io::write_surface((dir / ("bottom" + ext)).string(), shell::bottom_surface(s), wo);
               io::write_surface((dir / ("middle" + ext)).string(), shell::middle_surface(s), wo);
               io::write_surface((dir / ("top" + ext)).string(), shell::top_surface(s), wo);
+              const auto middle = shell::middle_surface_mesh(s);
+              io::write_msh((dir / "middle.msh").string(), middle);
+              io::write_vtu((dir / "middle.vtu").string(), middle);
               io::write_vertex_map((dir / "map.txt").string(), map,
                                    {"input vertex i -> middle surface (middle" + ext + ") face and (u, v)",
                                     "point = (1-u-v)*P[F[face][0]] + u*P[F[face][1]] + v*P[F[face][2]]",

@@ -4,6 +4,9 @@
 #include "curvetet/core/log.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/shell/coarsen.hpp"
+#include "curvetet/shell/curved_middle.hpp"
+
+#include <memory>
 #include "curvetet/shell/extrusion.hpp"
 #include "curvetet/volume/assemble.hpp"
 #include "curvetet/volume/fill.hpp"
@@ -11,26 +14,17 @@
 namespace curvetet::pipeline {
 namespace {
 
-// Degree-k Lagrange nodes of the (still linear) middle triangles: the
-// curved fit replaces these with fitted ones.
-volume::CurvedMiddle linear_middle(const shell::Shell& s, int degree) {
+// The shell's middle surface as the assembly takes it: its fitted nodes, or
+// the flat triangles (degree 1) when it was not curved.
+volume::CurvedMiddle middle_of(const shell::Shell& s) {
   volume::CurvedMiddle m;
   m.bottom = s.bottom;
   m.faces = s.faces;
   m.singular = s.singular;
-  m.degree = degree;
-  const int n = highorder::triangle_node_count(degree);
-  for (const auto& f : s.faces) {
-    std::vector<mesh::Vec3> nodes;
-    for (int i = 0; i < n; ++i) {
-      auto l = highorder::triangle_node(degree, i);
-      const double u = double(l[0]) / degree, v = double(l[1]) / degree;
-      nodes.push_back((1 - u - v) * s.middle[f[0]] + u * s.middle[f[1]] + v * s.middle[f[2]]);
-    }
-    // Corners bit-exact (no rounding through the weights).
-    for (int k = 0; k < 3; ++k) nodes[k] = s.middle[f[k]];
-    m.middle_nodes.push_back(std::move(nodes));
-  }
+  m.degree = s.middle_nodes.empty() ? 1 : s.middle_degree;
+  if (!s.middle_nodes.empty()) m.middle_nodes = s.middle_nodes;
+  else
+    for (const auto& f : s.faces) m.middle_nodes.push_back(shell::flat_triangle_nodes({s.middle[f[0]], s.middle[f[1]], s.middle[f[2]]}, 1));
   return m;
 }
 
@@ -67,9 +61,12 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
     co.target_pillar = o.shell.extrusion.target_thickness;
     co.singular_dot = o.shell.extrusion.singular_dot;
     co.debug_invariants = o.shell.debug_invariants;
-    const auto c = shell::coarsen_shell(r.shell, co);
+    // Middle of degree P-1 (paper §4.1); P = 2 keeps it flat.
+    std::unique_ptr<shell::MiddleFit> fit;
+    if (o.order > 2 && o.curved) fit = std::make_unique<shell::CurvedMiddleFit>(o.order - 1);
+    const auto c = shell::coarsen_shell(r.shell, co, fit.get());
     report["coarsen"] = {{"faces_before", c.faces_before}, {"faces_after", c.faces_after},
-                         {"rounds", c.rounds},             {"max_distance_relative", c.max_distance / diagonal},
+                         {"rounds", c.rounds},             {"middle_degree", r.shell.middle_nodes.empty() ? 1 : r.shell.middle_degree},             {"max_distance_relative", c.max_distance / diagonal},
                          {"epsilon_relative", epsilon_rel}};
     logger().info("coarsened the shell from {} to {} faces", c.faces_before, c.faces_after);
   }
@@ -77,7 +74,7 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
   volume::CurvedMiddle middle;
   {
     StageTimer t(&report, "middle surface");
-    middle = linear_middle(r.shell, 1); // flat until the curved fit (issue 7) provides degree P-1
+    middle = middle_of(r.shell);
   }
 
   mesh::LinearTetMesh fill;

@@ -1,8 +1,8 @@
 #pragma once
 // The whole pipeline (DESIGN.md §1) as one function from a checked input
 // surface to a curved order-P tet mesh, re-verified:
-//   shell::build_shell -> shell::coarsen_shell (under epsilon) -> middle
-//   nodes of degree P-1 (linear until the curved fit lands) -> fill inside the bottom
+//   shell::build_shell -> shell::coarsen_shell (under epsilon, fitting a
+//   curved middle of degree P-1 in every operation) -> fill inside the bottom
 //   surface (volume::fill_layered on the shell's one-sided extrusion) ->
 //   volume::assemble_curved_mesh -> check::verify_tet_mesh.
 // Each stage is timed into the report. Stages that later issues add
@@ -24,6 +24,7 @@ struct PipelineOptions {
   std::optional<double> epsilon_abs;   // absolute distance bound (overrides epsilon)
   shell::ShellOptions shell;
   bool coarsen = true;
+  bool curved = true;                  // fit a degree P-1 middle while coarsening (else flat)
   double fill_offset = 0.01;           // inward offset of the bottom surface, x its bbox diagonal
 };
 

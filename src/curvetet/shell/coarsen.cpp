@@ -2,6 +2,7 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
+#include "curvetet/shell/curved_middle.hpp"
 #include "curvetet/shell/invariants.hpp"
 #include "curvetet/shell/operations.hpp"
 #include "curvetet/shell/shell_editor.hpp"
@@ -123,6 +124,24 @@ class SmoothOp final : public Operation {
 
  private:
   SmoothParams p_;
+};
+
+// Control-point smoothing (curved middle only): the star of a vertex is
+// proposed unchanged, so only the fit of its spokes and faces is redone.
+class RefitOp final : public Operation {
+ public:
+  OpKind kind() const override { return OpKind::refit; }
+  bool renews() const override { return false; }
+  bool per_vertex() const override { return true; }
+  std::optional<double> priority(const ShellEditor&, int a, int) const override { return static_cast<double>(a); }
+  std::vector<StarCandidate> candidates(const ShellEditor& e, int a, int) const override {
+    StarCandidate c;
+    c.op = OpKind::refit;
+    c.removed = e.faces_of(a);
+    std::sort(c.removed.begin(), c.removed.end());
+    for (int f : c.removed) c.faces.push_back(e.shell().faces[f]);
+    return {std::move(c)};
+  }
 };
 
 // ---- The scheduler ----------------------------------------------------------
@@ -267,6 +286,8 @@ double mean_edge_length(const Shell& s) {
 
 void debug_check(const Shell& s, double epsilon, const std::string& stage) {
   require_valid_shell(s, stage);
+  if (const int f = first_uncertified_prism(s); f >= 0)
+    throw Error(ExitCode::internal, fmt::format("curved middle of prism {} not certified after {}", f, stage));
   const auto m = check_map(s);
   if (!(m.max_distance < epsilon) || m.points_outside > 0 || m.max_area_error > 1e-9 || m.min_piece_area < -1e-12) {
     throw Error(ExitCode::internal,
@@ -288,16 +309,22 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   out.epsilon = o.epsilon_abs > 0 ? o.epsilon_abs : o.epsilon * diag;
   out.faces_before = s.num_prisms();
   out.vertices_before = s.num_vertices();
+  if (fit->degree() > 1 && (s.middle_degree != fit->degree() || s.middle_nodes.size() != s.faces.size()))
+    set_flat_middle(s, fit->degree());
+  if (fit->degree() == 1 && !s.middle_nodes.empty())
+    throw Error(ExitCode::internal, "coarsen_shell: a curved shell needs a curved middle fit");
   ShellEditor editor(s);
   const StarContext ctx{editor, *fit, out.epsilon, o.quality_bound};
   const auto invariants = default_star_invariants();
   const CollapseOp collapse;
   const FlipOp flip;
   const SmoothOp smooth(SmoothParams{o.target_pillar * diag, o.singular_dot});
+  const RefitOp refit;
   for (int round = 0; round < o.max_rounds; ++round) {
     out.rounds = round + 1;
     long long collapsed = 0;
     std::vector<const Operation*> ops = {&collapse, &flip, &smooth};
+    if (fit->degree() > 1) ops.push_back(&refit);
     std::unique_ptr<SplitOp> split;
     if (o.split_factor > 0) {
       split = std::make_unique<SplitOp>(o.split_factor * mean_edge_length(s));

@@ -5,7 +5,9 @@
 //
 // Rounds of passes: collapse (shortest middle edge first), flip (valence
 // gain), smooth (every vertex once: pan / rotate / zoom), split (edges longer
-// than split_factor x the mean edge, longest first). Rounds stop when a
+// than split_factor x the mean edge, longest first); with a curved middle
+// also refit (every vertex star's middle nodes fitted again, after smooth).
+// Rounds stop when a
 // round's collapse pass accepts nothing, when a round removes less than
 // min_round_gain of the faces, or after max_rounds.
 //
@@ -60,7 +62,9 @@ struct CoarsenStats {
   std::vector<PassStats> passes;
 };
 
-// Coarsens s in place. `fit` defaults to the linear middle.
+// Coarsens s in place. `fit` defaults to the linear middle. A curved fit of
+// degree k starts from s's middle nodes when they have degree k, else from
+// the flat triangles (set_flat_middle); s ends with its fitted nodes.
 CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& options = {}, const MiddleFit* fit = nullptr);
 
 // Whole-map verification (tests, --debug-invariants, report).

@@ -25,7 +25,7 @@ MapCheck check_map(const Shell& s) {
     const PrismGeom g = prism_geom(s, p.image.prism);
     const auto uv = project_in(g, p.position, 1e-9);
     outside[i] = !uv || std::abs((*uv)[0] - p.image.u) > 1e-9 || std::abs((*uv)[1] - p.image.v) > 1e-9;
-    const Vec3 x = (1 - p.image.u - p.image.v) * g.middle[0] + p.image.u * g.middle[1] + p.image.v * g.middle[2];
+    const Vec3 x = middle_point(s, p.image);
     dist[i] = (x - p.position).norm();
   });
   for (int i = 0; i < P; ++i) {

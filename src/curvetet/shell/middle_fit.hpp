@@ -6,13 +6,9 @@
 // MiddleFit::evaluate, so a curved fit plugs in here without touching the
 // operations.
 //
-// LinearMiddle (this issue): the middle surface is the flat triangles of the
-// shell's middle vertices; nothing to fit, nothing to certify.
-// A curved fit would: sample the new prisms' middle triangles, map the
-// samples to the input by Π⁻¹ (fiber_hit on the candidate's tracked faces),
-// solve the least-squares control points (top/bottom fixed), certify det J > 0
-// with Bézier coefficients, and store the control points in the candidate for
-// evaluate() and the commit.
+// LinearMiddle: the middle surface is the flat triangles of the shell's
+// middle vertices; nothing to fit, nothing to certify. CurvedMiddleFit
+// (curved_middle.hpp) fits degree-k triangles and certifies their slabs.
 #include "curvetet/shell/star.hpp"
 
 namespace curvetet::shell {
@@ -22,6 +18,8 @@ class ShellEditor;
 class MiddleFit {
  public:
   virtual ~MiddleFit() = default;
+  // Degree of the middle triangles (Shell::middle_degree); 1 = flat.
+  virtual int degree() const = 0;
   // Fits the middle of c's new triangles (c.geoms, c.tracked are filled) and
   // checks the result (curved positivity). false = reject (curved_fit).
   virtual bool fit_and_check(const ShellEditor& editor, StarCandidate& c) const = 0;
@@ -31,6 +29,7 @@ class MiddleFit {
 
 class LinearMiddle final : public MiddleFit {
  public:
+  int degree() const override { return 1; }
   bool fit_and_check(const ShellEditor&, StarCandidate&) const override { return true; }
   Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const override {
     const auto& m = c.geoms[k].middle;

@@ -14,6 +14,7 @@
 // own input face; after isolation splits a face, both halves track it.
 #include "curvetet/mesh/surface_mesh.hpp"
 
+#include <array>
 #include <vector>
 
 namespace curvetet::shell {
@@ -46,12 +47,28 @@ struct Shell {
   // Input vertices first (points[i] is input vertex i), then any other
   // constraint points.
   std::vector<TrackedPoint> points;
+  // The curved middle surface (paper §4.1): per prism, the Lagrange nodes of
+  // a degree-`middle_degree` triangle in internal (Gmsh) order, corners
+  // first and bitwise equal to middle[faces[f][k]]; edge nodes agree between
+  // the two prisms of an edge. Empty = the flat middle triangles. The middle
+  // point of MapPoint (prism, u, v) is that triangle's map at (u, v).
+  int middle_degree = 1;
+  std::vector<std::vector<Vec3>> middle_nodes;
 
   int num_vertices() const { return static_cast<int>(middle.size()); }
   int num_prisms() const { return static_cast<int>(faces.size()); }
 };
 
-// The three surfaces as meshes (same faces).
+// The point of the (curved or flat) middle surface at p.
+Vec3 middle_point(const Shell& s, const MapPoint& p);
+
+// Sets the curved middle to the flat triangles as degree-`degree` nodes
+// (degree 1: clears middle_nodes).
+void set_flat_middle(Shell& s, int degree);
+// Degree-`degree` Lagrange nodes (internal order) of a flat triangle.
+std::vector<Vec3> flat_triangle_nodes(const std::array<Vec3, 3>& corners, int degree);
+
+// The three surfaces as meshes (same faces; the middle one flat).
 mesh::SurfaceMesh bottom_surface(const Shell& s);
 mesh::SurfaceMesh middle_surface(const Shell& s);
 mesh::SurfaceMesh top_surface(const Shell& s);

@@ -124,6 +124,9 @@ std::vector<int> ShellEditor::commit(const StarCandidate& c, int batch) {
     ++version_[c.removed_vertex];
   }
   // 3. New prisms: reuse the removed slots first.
+  const bool curved = !s_.middle_nodes.empty();
+  if (curved && c.middle_nodes.size() != c.faces.size())
+    throw Error(ExitCode::internal, "shell coarsening: a curved shell's candidate has no fitted middle nodes");
   std::vector<int> ids(c.faces.size());
   for (std::size_t k = 0; k < c.faces.size(); ++k) {
     Tri t = c.faces[k];
@@ -134,10 +137,12 @@ std::vector<int> ShellEditor::commit(const StarCandidate& c, int batch) {
       f = c.removed[k];
       s_.faces[f] = t;
       s_.tracked[f] = c.tracked[k];
+      if (curved) s_.middle_nodes[f] = c.middle_nodes[k];
     } else {
       f = s_.num_prisms();
       s_.faces.push_back(t);
       s_.tracked.push_back(c.tracked[k]);
+      if (curved) s_.middle_nodes.push_back(c.middle_nodes[k]);
       face_alive_.push_back(0);
       face_batch_.push_back(-1);
       prism_points_.emplace_back();
@@ -152,7 +157,10 @@ std::vector<int> ShellEditor::commit(const StarCandidate& c, int batch) {
     for (int side = 0; side < 2; ++side) grid_.insert(2 * f + side, cap_box(2 * f + side));
     ids[k] = f;
   }
-  for (std::size_t k = c.faces.size(); k < c.removed.size(); ++k) s_.tracked[c.removed[k]].clear();
+  for (std::size_t k = c.faces.size(); k < c.removed.size(); ++k) {
+    s_.tracked[c.removed[k]].clear();
+    if (curved) s_.middle_nodes[c.removed[k]].clear();
+  }
   // 4. The map of the points that were in the removed prisms.
   for (const auto& im : c.images) {
     auto& p = s_.points[im.point];
@@ -171,6 +179,7 @@ void ShellEditor::compact() {
   Shell& s = s_;
   std::vector<Tri> faces;
   std::vector<std::vector<int>> tracked;
+  std::vector<std::vector<Vec3>> middle_nodes;
   for (int f = 0; f < F; ++f) {
     if (!face_alive_[f]) continue;
     fmap[f] = nf++;
@@ -178,6 +187,7 @@ void ShellEditor::compact() {
     for (int& v : t) v = vmap[v];
     faces.push_back(t);
     tracked.push_back(std::move(s.tracked[f]));
+    if (!s.middle_nodes.empty()) middle_nodes.push_back(std::move(s.middle_nodes[f]));
   }
   auto keep = [&](auto& vec) {
     std::decay_t<decltype(vec)> out;
@@ -192,6 +202,7 @@ void ShellEditor::compact() {
   keep(s.singular);
   s.faces = std::move(faces);
   s.tracked = std::move(tracked);
+  if (!s.middle_nodes.empty()) s.middle_nodes = std::move(middle_nodes);
   for (auto& p : s.points)
     if (p.image.prism >= 0) p.image.prism = fmap[p.image.prism];
   rebuild();

@@ -21,7 +21,9 @@ namespace curvetet::shell {
 // than every existing one, so canonical splits agree) when committed.
 inline constexpr int kNewVertex = std::numeric_limits<int>::max() - 1;
 
-enum class OpKind : std::uint8_t { collapse, flip, split, smooth };
+// refit: same faces and positions, only the curved middle nodes of a vertex
+// star are fitted again (the control-point smoothing pass).
+enum class OpKind : std::uint8_t { collapse, flip, split, smooth, refit };
 std::string_view to_string(OpKind k);
 
 // Why a candidate was dropped. Counted per pass in the report.
@@ -61,6 +63,9 @@ struct StarCandidate {
   };
   std::vector<Image> images;                // new Π of the points of removed prisms
   double max_distance = 0;                  // over `images`
+  // Per new face: the fitted curved middle nodes (Shell::middle_nodes
+  // layout); empty for a flat middle.
+  std::vector<std::vector<Vec3>> middle_nodes;
 };
 
 } // namespace curvetet::shell

@@ -19,6 +19,7 @@ std::string_view to_string(OpKind k) {
     case OpKind::flip: return "flip";
     case OpKind::split: return "split";
     case OpKind::smooth: return "smooth";
+    case OpKind::refit: return "refit";
   }
   return "?";
 }
@@ -257,13 +258,14 @@ class CurvedFit final : public StarInvariant {
   bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override { return ctx.fit.fit_and_check(ctx.editor, c); }
 };
 
-class Distance final : public StarInvariant {
+// Π of every constraint point of the removed prisms under the new prisms
+// (fills c.images). A point must land in a new prism tracking its face.
+class MapImages final : public StarInvariant {
  public:
-  Rejection reason() const override { return Rejection::distance; }
-  bool holds(const StarContext& ctx, StarCandidate& c, Rejection& why) const override {
+  Rejection reason() const override { return Rejection::coverage; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
     const Shell& s = ctx.editor.shell();
     c.images.clear();
-    c.max_distance = 0;
     for (int f : c.removed)
       for (int p : ctx.editor.points_in(f)) {
         const auto& pt = s.points[p];
@@ -281,16 +283,25 @@ class Distance final : public StarInvariant {
           }
         }
         // Numerically outside every new prism: treated as not covered.
-        if (best_k < 0 || best_depth < -1e-9) {
-          why = Rejection::coverage;
-          return false;
-        }
-        const Vec3 x = ctx.fit.evaluate(c, best_k, best_uv[0], best_uv[1]);
-        const double d = (x - pt.position).norm();
-        if (!(d < ctx.epsilon)) return false;
-        c.max_distance = std::max(c.max_distance, d);
+        if (best_k < 0 || best_depth < -1e-9) return false;
         c.images.push_back({p, best_k, best_uv[0], best_uv[1]});
       }
+    return true;
+  }
+};
+
+class Distance final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::distance; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    const Shell& s = ctx.editor.shell();
+    c.max_distance = 0;
+    for (const auto& im : c.images) {
+      const Vec3 x = ctx.fit.evaluate(c, im.local, im.u, im.v);
+      const double d = (x - s.points[im.point].position).norm();
+      if (!(d < ctx.epsilon)) return false;
+      c.max_distance = std::max(c.max_distance, d);
+    }
     return true;
   }
 };
@@ -305,6 +316,7 @@ InvariantList default_star_invariants() {
   l.push_back(std::make_unique<Coverage>());
   l.push_back(std::make_unique<Section>());
   l.push_back(std::make_unique<CapsIntersection>());
+  l.push_back(std::make_unique<MapImages>());
   l.push_back(std::make_unique<CurvedFit>());
   l.push_back(std::make_unique<Distance>());
   return l;

@@ -16,11 +16,13 @@
 //  Section            invariant 2 for each new prism and its tracked faces
 //  CapsIntersection   invariant 3: new caps against each other and against
 //                     every live cap outside the star (grid candidates)
-//  CurvedFit          MiddleFit::fit_and_check (no-op for a linear middle)
-//  Distance           every constraint point mapped into a removed prism gets
+//  MapImages          every constraint point mapped into a removed prism gets
 //                     its new Π in a new prism tracking its face (else:
-//                     coverage) and ||p - middle(Π(p))|| < epsilon
-//                     (fills c.images)
+//                     coverage; fills c.images)
+//  CurvedFit          MiddleFit::fit_and_check (no-op for a linear middle;
+//                     the curved fit uses c.images as samples)
+//  Distance           ||p - middle(Π(p))|| < epsilon for those points, the
+//                     middle evaluated through MiddleFit::evaluate
 #include "curvetet/shell/middle_fit.hpp"
 #include "curvetet/shell/shell_editor.hpp"
 #include "curvetet/shell/star.hpp"

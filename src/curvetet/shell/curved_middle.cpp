@@ -1,0 +1,160 @@
+#include "curvetet/shell/curved_middle.hpp"
+
+#include "curvetet/core/error.hpp"
+#include "curvetet/highorder/conforming_nodes.hpp"
+#include "curvetet/highorder/element_map.hpp"
+#include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/highorder/patch_fit.hpp"
+#include "curvetet/shell/shell_editor.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <limits>
+
+namespace curvetet::shell {
+
+namespace {
+
+using highorder::PatchFitProblem;
+
+// Nodes of directed edge (corner ia -> corner ib) of a degree-k triangle,
+// the k - 1 points strictly between, from ia towards ib.
+std::vector<Vec3> edge_nodes(const std::vector<Vec3>& nodes, int k, int ia, int ib) {
+  std::vector<Vec3> out;
+  for (int step = 1; step < k; ++step) {
+    int w[3] = {0, 0, 0};
+    w[ia] = k - step;
+    w[ib] = step;
+    out.push_back(nodes[highorder::triangle_node_index(k, {w[1], w[2]})]);
+  }
+  return out;
+}
+
+bool slabs_positive(const PrismGeom& g, int k, const std::vector<Vec3>& nodes, const highorder::CertificateOptions& o) {
+  for (const auto side : {highorder::SlabSide::bottom, highorder::SlabSide::top}) {
+    const auto& cap = side == highorder::SlabSide::bottom ? g.bottom : g.top;
+    std::array<bool, 3> collapsed{};
+    for (int i = 0; i < 3; ++i) collapsed[i] = cap[i] == g.middle[i];
+    if (collapsed[0] && collapsed[1] && collapsed[2]) continue; // a flat slab: no volume to certify
+    const auto cert = highorder::certify_slab(k, nodes.data(), cap, side, collapsed, o);
+    if (cert.validity != highorder::Validity::positive) return false;
+  }
+  return true;
+}
+
+int local_id(std::vector<int>& ids, int v) {
+  const auto it = std::find(ids.begin(), ids.end(), v);
+  if (it != ids.end()) return static_cast<int>(it - ids.begin());
+  ids.push_back(v);
+  return static_cast<int>(ids.size()) - 1;
+}
+
+// The star's boundary edges (a -> b as the new faces orient them) with the
+// nodes the removed prism holding that same directed edge has on it.
+void add_fixed_edges(const Shell& s, const StarCandidate& c, int k, std::vector<int>& ids, PatchFitProblem& p) {
+  auto has_directed = [&](int a, int b) {
+    for (const auto& t : c.faces)
+      for (int i = 0; i < 3; ++i)
+        if (t[i] == a && t[(i + 1) % 3] == b) return true;
+    return false;
+  };
+  for (const auto& t : c.faces)
+    for (int i = 0; i < 3; ++i) {
+      const int a = t[i], b = t[(i + 1) % 3];
+      if (has_directed(b, a)) continue; // interior edge of the star
+      bool found = false;
+      for (int f : c.removed) {
+        const Tri& r = s.faces[f];
+        for (int j = 0; j < 3 && !found; ++j)
+          if (r[j] == a && r[(j + 1) % 3] == b) {
+            p.fixed_edges.push_back({local_id(ids, a), local_id(ids, b), edge_nodes(s.middle_nodes[f], k, j, (j + 1) % 3)});
+            found = true;
+          }
+        if (found) break;
+      }
+      if (!found) throw Error(ExitCode::internal, "curved middle fit: a star boundary edge is not an edge of the removed prisms");
+    }
+}
+
+void add_samples(const Shell& s, const StarCandidate& c, PatchFitProblem& p) {
+  for (const auto& im : c.images) p.samples.push_back({im.local, {im.u, im.v}, s.points[im.point].position});
+  for (std::size_t k = 0; k < c.faces.size(); ++k)
+    for (int t : c.tracked[k]) {
+      const auto& f = s.input.faces[t];
+      const Vec3 a = s.input.vertices[f[0]], b = s.input.vertices[f[1]], d = s.input.vertices[f[2]];
+      for (const Vec3& x : {Vec3((a + b + d) / 3), Vec3((a + b) / 2), Vec3((b + d) / 2), Vec3((d + a) / 2)}) {
+        double depth;
+        const auto uv = project_in(c.geoms[k], x, 1e-9, &depth);
+        if (uv) p.samples.push_back({static_cast<int>(k), {(*uv)[0], (*uv)[1]}, x});
+      }
+    }
+}
+
+} // namespace
+
+CurvedMiddleFit::CurvedMiddleFit(int degree) : degree_(degree) {
+  if (degree < 2 || degree > 7) throw Error(ExitCode::usage, "the curved middle degree must be in 2..7 (order 3..8)");
+  // A rejected fit only costs a coarser result; keep the budget small.
+  certificate_.max_pieces = 200;
+  certificate_.max_depth = 10;
+}
+
+bool CurvedMiddleFit::fit_and_check(const ShellEditor& editor, StarCandidate& c) const {
+  const Shell& s = editor.shell();
+  if (s.middle_degree != degree_ || s.middle_nodes.size() != s.faces.size())
+    throw Error(ExitCode::internal, "curved middle fit: the shell's middle nodes are not of the fitted degree");
+  PatchFitProblem p;
+  p.degree = degree_;
+  std::vector<int> ids;
+  for (const auto& t : c.faces) p.triangles.push_back({local_id(ids, t[0]), local_id(ids, t[1]), local_id(ids, t[2])});
+  add_fixed_edges(s, c, degree_, ids, p);
+  p.corners.resize(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) p.corners[i] = editor.middle(c, ids[i]);
+  add_samples(s, c, p);
+  auto fit = highorder::fit_patch_star(p);
+  for (std::size_t k = 0; k < c.faces.size(); ++k)
+    if (!slabs_positive(c.geoms[k], degree_, fit.nodes[k], certificate_)) return false;
+  c.middle_nodes = std::move(fit.nodes);
+  return true;
+}
+
+Vec3 CurvedMiddleFit::evaluate(const StarCandidate& c, int k, double u, double v) const {
+  return highorder::triangle_point(degree_, c.middle_nodes[k].data(), Eigen::Vector2d(u, v));
+}
+
+int first_uncertified_prism(const Shell& s) {
+  if (s.middle_nodes.empty()) return -1;
+  highorder::CertificateOptions o;
+  std::atomic<int> worst{std::numeric_limits<int>::max()};
+  tbb::parallel_for(0, s.num_prisms(), [&](int f) {
+    if (!slabs_positive(prism_geom(s, f), s.middle_degree, s.middle_nodes[f], o)) {
+      int cur = worst.load();
+      while (f < cur && !worst.compare_exchange_weak(cur, f)) {
+      }
+    }
+  });
+  return worst.load() == std::numeric_limits<int>::max() ? -1 : worst.load();
+}
+
+mesh::TetMesh middle_surface_mesh(const Shell& s) {
+  const int k = s.middle_nodes.empty() ? 1 : s.middle_degree;
+  const auto numbering = highorder::number_triangle_nodes(s.num_vertices(), s.faces, k);
+  mesh::TetMesh m;
+  m.order = k;
+  m.nodes.assign(numbering.num_nodes, Vec3::Zero());
+  for (int v = 0; v < s.num_vertices(); ++v) m.nodes[v] = s.middle[v];
+  const int per = highorder::triangle_node_count(k);
+  for (int f = 0; f < s.num_prisms(); ++f)
+    for (int i = 0; i < per; ++i) {
+      const int g = numbering.tet_nodes[static_cast<std::size_t>(f) * per + i];
+      if (i >= 3) m.nodes[g] = s.middle_nodes[f][i]; // shared edge nodes agree bitwise between prisms
+    }
+  m.boundary = numbering.tet_nodes;
+  m.boundary_tags.assign(s.num_prisms(), mesh::kBoundaryTag);
+  m.groups = {{2, mesh::kBoundaryTag, "middle"}};
+  return m;
+}
+
+} // namespace curvetet::shell
