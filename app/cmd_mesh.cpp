@@ -34,6 +34,8 @@ std::function<int()> add_mesh_options(CLI::App& root) {
   root.add_option("--epsilon-abs", o->epsilon_abs, "Distance bound in absolute units (overrides --epsilon)")
       ->check(CLI::PositiveNumber);
   root.add_flag("!--no-coarsen", o->pipeline.coarsen, "Keep the shell as dense as the input (no coarsening)");
+  root.add_flag("!--flat-middle", o->pipeline.curved,
+                "Keep the middle surface flat (straight elements; coarser meshes come from the curved default)");
   root.add_option("--vtu", o->vtu, "Also write a VTK Lagrange .vtu (for ParaView)");
   root.add_flag("--binary", o->binary, "Write the .msh in binary");
   root.add_flag("--debug-invariants", o->pipeline.shell.debug_invariants,

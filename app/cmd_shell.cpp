@@ -167,6 +167,9 @@ Command add_shell_command(CLI::App& root) {
               if (o->order > 2) fit = std::make_unique<shell::CurvedMiddleFit>(o->order - 1);
               const auto c = shell::coarsen_shell(built.shell, o->coarsen, fit.get());
               report["coarsen"] = coarsen_json(c);
+              if (const auto* curved = dynamic_cast<const shell::CurvedMiddleFit*>(fit.get())) {
+                report["coarsen"]["curved_middle"] = curved->stats().json();
+              }
               // The written shell is the coarse one (vertices renumbered).
               report["shell"]["prisms"] = s.num_prisms();
               singular_ids.clear();
@@ -200,7 +203,9 @@ Command add_shell_command(CLI::App& root) {
               io::write_vtu((dir / "middle.vtu").string(), middle);
               io::write_vertex_map((dir / "map.txt").string(), map,
                                    {"input vertex i -> middle surface (middle" + ext + ") face and (u, v)",
-                                    "point = (1-u-v)*P[F[face][0]] + u*P[F[face][1]] + v*P[F[face][2]]",
+                                    s.middle_nodes.empty()
+                                        ? "point = (1-u-v)*P[F[face][0]] + u*P[F[face][1]] + v*P[F[face][2]]"
+                                        : "point = the curved triangle `face` of middle.msh at (u, v)",
                                     "input: " + o->input.mesh_path});
             }
             report.write((dir / "report.json").string());

@@ -68,6 +68,8 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
     report["coarsen"] = {{"faces_before", c.faces_before}, {"faces_after", c.faces_after},
                          {"rounds", c.rounds},             {"middle_degree", r.shell.middle_nodes.empty() ? 1 : r.shell.middle_degree},             {"max_distance_relative", c.max_distance / diagonal},
                          {"epsilon_relative", epsilon_rel}};
+    if (const auto* curved = dynamic_cast<const shell::CurvedMiddleFit*>(fit.get()))
+      report["coarsen"]["curved_middle"] = curved->stats().json();
     logger().info("coarsened the shell from {} to {} faces", c.faces_before, c.faces_after);
   }
 

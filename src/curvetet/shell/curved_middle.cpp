@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <limits>
 
 namespace curvetet::shell {
@@ -113,11 +114,32 @@ bool CurvedMiddleFit::fit_and_check(const ShellEditor& editor, StarCandidate& c)
   p.corners.resize(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) p.corners[i] = editor.middle(c, ids[i]);
   add_samples(s, c, p);
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
   auto fit = highorder::fit_patch_star(p);
-  for (std::size_t k = 0; k < c.faces.size(); ++k)
-    if (!slabs_positive(c.geoms[k], degree_, fit.nodes[k], certificate_)) return false;
-  c.middle_nodes = std::move(fit.nodes);
-  return true;
+  const auto t1 = clock::now();
+  bool ok = true;
+  for (std::size_t k = 0; k < c.faces.size() && ok; ++k)
+    ok = slabs_positive(c.geoms[k], degree_, fit.nodes[k], certificate_);
+  const auto t2 = clock::now();
+  fits_ += 1;
+  rejected_ += ok ? 0 : 1;
+  fit_ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
+  certificate_ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(t2 - t1).count();
+  if (ok) c.middle_nodes = std::move(fit.nodes);
+  return ok;
+}
+
+CurvedFitStats CurvedMiddleFit::stats() const {
+  return {degree_, fits_.load(), rejected_.load(), fit_ns_.load() * 1e-9, certificate_ns_.load() * 1e-9};
+}
+
+nlohmann::json CurvedFitStats::json() const {
+  return {{"degree", degree},
+          {"fits", fits},
+          {"fits_rejected_by_certificate", rejected},
+          {"fit_cpu_seconds", fit_seconds},
+          {"certificate_cpu_seconds", certificate_seconds}};
 }
 
 Vec3 CurvedMiddleFit::evaluate(const StarCandidate& c, int k, double u, double v) const {

@@ -19,7 +19,19 @@
 #include "curvetet/mesh/tet_mesh.hpp"
 #include "curvetet/shell/middle_fit.hpp"
 
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+
 namespace curvetet::shell {
+
+// Work done by a CurvedMiddleFit (summed over threads; CPU seconds).
+struct CurvedFitStats {
+  int degree = 0;
+  long long fits = 0, rejected = 0;
+  double fit_seconds = 0, certificate_seconds = 0;
+  nlohmann::json json() const;
+};
 
 class CurvedMiddleFit final : public MiddleFit {
  public:
@@ -28,10 +40,12 @@ class CurvedMiddleFit final : public MiddleFit {
   int degree() const override { return degree_; }
   bool fit_and_check(const ShellEditor& editor, StarCandidate& c) const override;
   Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const override;
+  CurvedFitStats stats() const;
 
  private:
   int degree_;
   highorder::CertificateOptions certificate_;
+  mutable std::atomic<long long> fits_{0}, rejected_{0}, fit_ns_{0}, certificate_ns_{0};
 };
 
 // Both slabs of prism f of a curved shell, certified (a flat shell passes
