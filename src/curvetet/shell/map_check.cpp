@@ -39,16 +39,9 @@ MapCheck check_map(const Shell& s) {
   const int F = s.num_prisms();
   std::vector<double> err(F, 0), piece(F, 0);
   tbb::parallel_for(0, F, [&](int f) {
-    const PrismGeom g = prism_geom(s, f);
-    double area = 0, min_piece = std::numeric_limits<double>::infinity();
-    for (int t : s.tracked[f]) {
-      const auto& tri = s.input.faces[t];
-      const auto a = image_area(g, s.input.vertices[tri[0]], s.input.vertices[tri[1]], s.input.vertices[tri[2]]);
-      area += a.area;
-      min_piece = std::min(min_piece, a.min_piece);
-    }
-    err[f] = std::abs(area - 1);
-    piece[f] = min_piece == std::numeric_limits<double>::infinity() ? 0 : min_piece;
+    const auto a = image_area_sum(prism_geom(s, f), s.input, s.tracked[f]);
+    err[f] = std::abs(a.area - 1);
+    piece[f] = a.min_piece;
   });
   out.min_piece_area = std::numeric_limits<double>::infinity();
   for (int f = 0; f < F; ++f) {

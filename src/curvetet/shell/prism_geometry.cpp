@@ -187,95 +187,122 @@ std::optional<Vec3> fiber_hit(const PrismGeom& g, double u, double v, const Vec3
 
 namespace {
 
-// Clips a convex polygon (u, v) to the reference triangle u, v >= 0,
-// u + v <= 1 and returns twice its signed area.
-double clipped_reference_area(std::vector<std::array<double, 2>> poly) {
-  for (int i = 0; i < 3 && !poly.empty(); ++i) {
-    auto value = [&](const std::array<double, 2>& p) { return i == 0 ? p[0] : i == 1 ? p[1] : 1 - p[0] - p[1]; };
-    std::vector<std::array<double, 2>> next;
+// One canonical tet of a prism, ready for image measures.
+struct ImageTet {
+  TetFrame t;
+  double volume; // 6 x signed volume, relative error <= 1e-12
+};
+
+std::vector<ImageTet> image_tets(const PrismGeom& g) {
+  std::vector<ImageTet> out;
+  for (Slab slab : kSlabs)
+    for (const auto& tet : canonical_split(g.ids)) {
+      if (g.zero_pillar(slab, tet.pillar)) continue;
+      ImageTet it{frame(g, slab, tet), 0};
+      it.volume = orient3d_value(it.t.p[0], it.t.p[1], it.t.p[2], it.t.p[3]);
+      if (it.volume > 0) out.push_back(it); // only defined on positive prisms
+    }
+  return out;
+}
+
+// Barycentric coordinates of x in the tet as volume ratios, each with a
+// small relative error: a point 1e-19 off a tet face must not land on the
+// wrong side of it, or the clip cuts a sliver of arbitrary size along an
+// edge lying in that face.
+Eigen::Vector4d accurate_barycentric(const ImageTet& it, const Vec3& x) {
+  Eigen::Vector4d l;
+  for (int i = 0; i < 4; ++i) {
+    Vec3 q[4] = {it.t.p[0], it.t.p[1], it.t.p[2], it.t.p[3]};
+    q[i] = x;
+    l[i] = orient3d_value(q[0], q[1], q[2], q[3]) / it.volume;
+  }
+  return l;
+}
+
+// Twice the (u, v) area of the image of (a, b, c) clipped to the tet, given
+// the corners' barycentric coordinates; nullopt when the piece is empty or
+// belongs to the neighbouring tet.
+std::optional<double> tet_piece(const ImageTet& it, const Vec3& a, const Vec3& b, const Vec3& c,
+                                std::vector<Eigen::Vector4d> poly) {
+  // A triangle lying exactly in the plane of face i (the middle triangle of
+  // a flat region, an inner face of the split) is in both closed tets
+  // sharing that face; it belongs to the one on its positive side (as if
+  // pushed along its normal), so it is counted once.
+  for (int i = 0; i < 4; ++i)
+    if (poly[0][i] == 0 && poly[1][i] == 0 && poly[2][i] == 0 && orient3d(a, b, c, it.t.p[i]) < 0)
+      return std::nullopt;
+  for (int i = 0; i < 4 && !poly.empty(); ++i) {
+    std::vector<Eigen::Vector4d> next;
     for (std::size_t j = 0; j < poly.size(); ++j) {
       const auto& P = poly[j];
       const auto& Q = poly[(j + 1) % poly.size()];
-      const double p = value(P), q = value(Q);
-      if (p >= 0) next.push_back(P);
-      if ((p >= 0) != (q >= 0)) {
-        const double t = p / (p - q);
-        next.push_back({P[0] + t * (Q[0] - P[0]), P[1] + t * (Q[1] - P[1])});
+      const bool pin = P[i] >= 0, qin = Q[i] >= 0;
+      if (pin) next.push_back(P);
+      if (pin != qin) {
+        Eigen::Vector4d X = P + (Q - P) * (P[i] / (P[i] - Q[i]));
+        X[i] = 0; // on the plane, exactly
+        next.push_back(X);
       }
     }
     poly = std::move(next);
   }
+  if (poly.size() < 3) return std::nullopt;
+  std::vector<std::array<double, 2>> uv;
+  for (const auto& l : poly) {
+    const Vec3 r = l[0] * it.t.r[0] + l[1] * it.t.r[1] + l[2] * it.t.r[2] + l[3] * it.t.r[3];
+    uv.push_back({r[0], r[1]});
+  }
   double twice = 0;
-  for (std::size_t j = 0; j < poly.size(); ++j) {
-    const auto& p = poly[j];
-    const auto& q = poly[(j + 1) % poly.size()];
+  for (std::size_t j = 0; j < uv.size(); ++j) {
+    const auto& p = uv[j];
+    const auto& q = uv[(j + 1) % uv.size()];
     twice += p[0] * q[1] - p[1] * q[0];
   }
+  // The reference middle triangle has area 1/2: twice the area = units.
   return twice;
+}
+
+void add_piece(ImageArea& out, std::optional<double> twice) {
+  if (!twice) return;
+  out.area += *twice;
+  out.min_piece = std::min(out.min_piece, *twice);
 }
 
 } // namespace
 
 ImageArea image_area(const PrismGeom& g, const Vec3& a, const Vec3& b, const Vec3& c) {
   ImageArea out;
-  const auto& m = g.middle;
-  // A triangle lying in the middle triangle's plane (e.g. the initial shell,
-  // where middle = input, or a flat region): the fibers start on it, so its
-  // image is its own barycentric shadow on the middle triangle.
-  // "In the plane" up to rounding (1e-12 of the triangle's size): such a
-  // triangle straddles the two slabs by rounding noise, so clipping it to
-  // the slabs' tets would lose or double-count slivers of it.
-  const Vec3 n = (m[1] - m[0]).cross(m[2] - m[0]);
-  const double scale = std::max({(m[1] - m[0]).norm(), (m[2] - m[1]).norm(), (m[0] - m[2]).norm()});
-  auto off_plane = [&](const Vec3& x) { return std::abs(n.normalized().dot(x - m[0])); };
-  if (n.norm() > 0 && off_plane(a) <= 1e-12 * scale && off_plane(b) <= 1e-12 * scale &&
-      off_plane(c) <= 1e-12 * scale) {
-    const Vec3 e1 = m[1] - m[0], e2 = m[2] - m[0];
-    Eigen::Matrix<double, 3, 2> E;
-    E << e1, e2;
-    const Eigen::Matrix2d G = E.transpose() * E;
-    std::vector<std::array<double, 2>> poly;
-    for (const Vec3* x : {&a, &b, &c}) {
-      const Eigen::Vector2d uv = G.ldlt().solve(E.transpose() * (*x - m[0]));
-      poly.push_back({uv[0], uv[1]});
-    }
-    out.area = out.min_piece = clipped_reference_area(poly);
-    return out;
-  }
   out.min_piece = std::numeric_limits<double>::infinity();
-  for (Slab slab : kSlabs)
-    for (const auto& tet : canonical_split(g.ids)) {
-      if (g.zero_pillar(slab, tet.pillar)) continue;
-      const TetFrame t = frame(g, slab, tet);
-      // Clip the triangle to the tet in the tet's barycentric coordinates.
-      std::vector<Eigen::Vector4d> poly = {barycentric(t.p, a), barycentric(t.p, b), barycentric(t.p, c)};
-      for (int i = 0; i < 4 && !poly.empty(); ++i) {
-        std::vector<Eigen::Vector4d> next;
-        for (std::size_t j = 0; j < poly.size(); ++j) {
-          const auto& P = poly[j];
-          const auto& Q = poly[(j + 1) % poly.size()];
-          const bool pin = P[i] >= 0, qin = Q[i] >= 0;
-          if (pin) next.push_back(P);
-          if (pin != qin) next.push_back(P + (Q - P) * (P[i] / (P[i] - Q[i])));
-        }
-        poly = std::move(next);
-      }
-      if (poly.size() < 3) continue;
-      double twice = 0;
-      std::vector<std::array<double, 2>> uv;
-      for (const auto& l : poly) {
-        const Vec3 r = l[0] * t.r[0] + l[1] * t.r[1] + l[2] * t.r[2] + l[3] * t.r[3];
-        uv.push_back({r[0], r[1]});
-      }
-      for (std::size_t j = 0; j < uv.size(); ++j) {
-        const auto& p = uv[j];
-        const auto& q = uv[(j + 1) % uv.size()];
-        twice += p[0] * q[1] - p[1] * q[0];
-      }
-      // The reference middle triangle has area 1/2: twice the area = units.
-      out.area += twice;
-      out.min_piece = std::min(out.min_piece, twice);
+  for (const auto& it : image_tets(g))
+    add_piece(out, tet_piece(it, a, b, c, {accurate_barycentric(it, a), accurate_barycentric(it, b),
+                                           accurate_barycentric(it, c)}));
+  if (out.min_piece == std::numeric_limits<double>::infinity()) out.min_piece = 0;
+  return out;
+}
+
+ImageArea image_area_sum(const PrismGeom& g, const mesh::SurfaceMesh& input, std::span<const int> faces) {
+  ImageArea out;
+  out.min_piece = std::numeric_limits<double>::infinity();
+  std::vector<int> verts;
+  for (int f : faces)
+    for (int v : input.faces[f]) verts.push_back(v);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  auto local = [&](int v) { return std::lower_bound(verts.begin(), verts.end(), v) - verts.begin(); };
+  for (const auto& it : image_tets(g)) {
+    std::vector<Eigen::Vector4d> bary(verts.size());
+    for (std::size_t i = 0; i < verts.size(); ++i) bary[i] = accurate_barycentric(it, input.vertices[verts[i]]);
+    for (int f : faces) {
+      const auto& t = input.faces[f];
+      // Entirely outside one face plane (the common case): nothing to clip.
+      bool outside = false;
+      for (int i = 0; i < 4 && !outside; ++i)
+        outside = bary[local(t[0])][i] < 0 && bary[local(t[1])][i] < 0 && bary[local(t[2])][i] < 0;
+      if (outside) continue;
+      add_piece(out, tet_piece(it, input.vertices[t[0]], input.vertices[t[1]], input.vertices[t[2]],
+                               {bary[local(t[0])], bary[local(t[1])], bary[local(t[2])]}));
     }
+  }
   if (out.min_piece == std::numeric_limits<double>::infinity()) out.min_piece = 0;
   return out;
 }

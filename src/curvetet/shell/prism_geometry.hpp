@@ -15,6 +15,7 @@
 
 #include <array>
 #include <optional>
+#include <span>
 
 namespace curvetet::shell {
 
@@ -61,9 +62,18 @@ std::optional<Vec3> fiber_hit(const PrismGeom& g, double u, double v, const Vec3
 // area = sum of the signed piece areas, in units of the middle triangle
 // (1 = the whole triangle); min_piece = smallest signed piece area (same
 // units; < 0 means a piece maps with reversed orientation).
+// Accuracy: the corners' barycentric coordinates in each tet are volume
+// ratios with a small relative error (orient3d_value, exact fallback), so a
+// nearly degenerate configuration (a corner 1e-19 off a tet face) costs no
+// accuracy: the area errs by ~1e-14, not by the size of a mis-clipped
+// sliver. A triangle lying exactly in a face shared by two tets (a flat
+// region's middle triangle) counts once, for the tet on its positive side.
 struct ImageArea {
   double area = 0, min_piece = 0;
 };
 ImageArea image_area(const PrismGeom& g, const Vec3& a, const Vec3& b, const Vec3& c);
+// The same summed over input faces `faces` of `input` (area = sum, min_piece
+// = min), each input vertex's barycentric coordinates computed once.
+ImageArea image_area_sum(const PrismGeom& g, const mesh::SurfaceMesh& input, std::span<const int> faces);
 
 } // namespace curvetet::shell
