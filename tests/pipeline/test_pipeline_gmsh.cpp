@@ -73,3 +73,31 @@ TEST(PipelineGmsh, SpotOrder4IsPositiveAndWithinEpsilonForGmsh) {
   EXPECT_NE(strict.exit_code, 0) << strict.out;
   EXPECT_NE(strict.out.find("FAIL: input vertex"), std::string::npos) << strict.out;
 }
+
+// `--fill all`: the exterior region out to a box is meshed too. Gmsh finds
+// every tet of both regions positive and the "boundary" group (now the
+// interface) within epsilon; `curvetet check` re-verifies the written file
+// with its two regions.
+TEST(PipelineGmsh, FillAllMeshesTheExteriorForGmshAndCheck) {
+  if (!python_gmsh_available()) GTEST_SKIP() << "/usr/bin/python3 lacks gmsh, numpy or scipy";
+  const std::string input = CURVETET_SOURCE_DIR "/examples/spot.off";
+  auto run = run_main(input, "spot_all", "--order 4 --epsilon 0.01 --fill all");
+  ASSERT_TRUE(std::filesystem::exists(run.msh));
+  nlohmann::json report = nlohmann::json::parse(std::ifstream(run.report));
+  const auto& v = report["verification"];
+  EXPECT_TRUE(v["valid"].get<bool>());
+  ASSERT_TRUE(v.contains("exterior")) << v.dump(1);
+  EXPECT_GT(v["exterior"]["tets"].get<int>(), 0);
+  EXPECT_EQ(v["exterior"]["interface_triangles"].get<int>(), report["assembly"]["boundary_triangles"].get<int>());
+  EXPECT_GT(v["exterior"]["outer_triangles"].get<int>(), 0);
+
+  auto out = curvetet::test::run_command(gmsh_check(run, input, 0.01));
+  EXPECT_EQ(out.exit_code, 0) << out.out;
+  EXPECT_NE(out.out.find("AnalyseMeshQuality:"), std::string::npos) << out.out;
+
+  auto check = curvetet::test::run_command(curvetet::test::quoted(CURVETET_BINARY) + " -q check " +
+                                           curvetet::test::quoted(run.msh.string()) + " --input " +
+                                           curvetet::test::quoted(input) + " 2>&1");
+  EXPECT_EQ(check.exit_code, 0) << check.out;
+  EXPECT_NE(check.out.find("exterior region:"), std::string::npos) << check.out;
+}

@@ -70,27 +70,40 @@ class CurvedOptimizer {
         tried[id] = 1;
         const Move mv = is_corner ? vertex_move(id) : node_move(id);
         if (mv.nodes.empty()) continue;
+        // Moving one high-order node of a straight tet changes its Jacobian
+        // by d (x) grad(phi_node), whose sign varies over the tet, so its max
+        // AMIPS rises to first order: only try when the worst touched tet is
+        // already curved.
+        if (!is_corner && straight(worst_of(mv.tets))) continue;
         if (try_move(mv, stats)) ++(is_corner ? stats.vertex_moves : stats.node_moves);
       }
     }
   }
 
  private:
-  // Max AMIPS of tet t. A straight tet (every node where its corners'
-  // affine map puts it) has a constant Jacobian: one evaluation suffices.
-  double tet_amips(int t) const {
+  // Whether every node of tet t is where its corners' affine map puts it
+  // (then its Jacobian is constant).
+  bool straight(int t) const {
     const int* ids = m_.tet(t);
     const Vec3 &a = m_.nodes[ids[0]], &b = m_.nodes[ids[1]], &c = m_.nodes[ids[2]], &d = m_.nodes[ids[3]];
-    Eigen::Matrix3d j;
-    j << b - a, c - a, d - a;
-    const double scale = j.cwiseAbs().maxCoeff();
-    bool straight = true;
-    for (int i = 4; i < np_ && straight; ++i) {
+    const double scale = std::max({(b - a).cwiseAbs().maxCoeff(), (c - a).cwiseAbs().maxCoeff(),
+                                   (d - a).cwiseAbs().maxCoeff()});
+    for (int i = 4; i < np_; ++i) {
       const auto& w = barycentric_[i];
       const Vec3 affine = w[0] * a + w[1] * b + w[2] * c + w[3] * d;
-      straight = (m_.nodes[ids[i]] - affine).cwiseAbs().maxCoeff() <= 1e-12 * scale;
+      if ((m_.nodes[ids[i]] - affine).cwiseAbs().maxCoeff() > 1e-12 * scale) return false;
     }
-    if (straight) return highorder::amips(j);
+    return true;
+  }
+
+  // Max AMIPS of tet t (one evaluation when straight).
+  double tet_amips(int t) const {
+    const int* ids = m_.tet(t);
+    if (straight(t)) {
+      Eigen::Matrix3d j;
+      j << m_.nodes[ids[1]] - m_.nodes[ids[0]], m_.nodes[ids[2]] - m_.nodes[ids[0]], m_.nodes[ids[3]] - m_.nodes[ids[0]];
+      return highorder::amips(j);
+    }
     Vec3 nodes[165]; // order <= 8
     for (int i = 0; i < np_; ++i) nodes[i] = m_.nodes[ids[i]];
     return highorder::tet_max_amips(m_.order, nodes);
@@ -124,6 +137,10 @@ class CurvedOptimizer {
     std::sort(mv.tets.begin(), mv.tets.end());
     mv.tets.erase(std::unique(mv.tets.begin(), mv.tets.end()), mv.tets.end());
     return mv;
+  }
+
+  int worst_of(const std::vector<int>& tets) const {
+    return *std::max_element(tets.begin(), tets.end(), [&](int a, int b) { return amips_[a] < amips_[b]; });
   }
 
   Move node_move(int id) const {

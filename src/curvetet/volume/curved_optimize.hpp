@@ -10,7 +10,8 @@
 //    node's barycentric weight on v (1 at v, 0 on the faces opposite v), so
 //    the star's straight parts stay straight and nodes away from v stay put;
 //  - node move: one high-order node (edge, face or interior) not on a listed
-//    boundary triangle moves by d.
+//    boundary triangle moves by d; tried only when the worst tet it touches
+//    is curved (bending a straight tet raises its max AMIPS).
 // d is a descent direction of the touched tets' max AMIPS (central finite
 // differences), tried with halving steps. A move is kept only if the max
 // AMIPS of the touched tets decreases AND highorder::certify_tet says
@@ -25,8 +26,8 @@
 namespace curvetet::volume {
 
 struct CurvedOptimizeOptions {
-  int passes = 3;               // sweeps over the bad tets
-  double bad_fraction = 0.1;    // a sweep visits tets whose max AMIPS >= this quantile from the top...
+  int passes = 10;              // sweeps over the bad tets (stops early when one moves nothing)
+  double bad_fraction = 0.25;   // a sweep visits tets whose max AMIPS >= this quantile from the top...
   double min_amips = 4.0;       // ...and above this value
   int line_search_steps = 6;    // step halvings per move
   bool move_vertices = true;
