@@ -10,6 +10,7 @@
 #include "curvetet/io/vtu.hpp"
 #include "curvetet/pipeline/pipeline.hpp"
 
+#include <map>
 #include <memory>
 
 namespace curvetet::app {
@@ -33,6 +34,20 @@ std::function<int()> add_mesh_options(CLI::App& root) {
       ->capture_default_str();
   root.add_option("--epsilon-abs", o->epsilon_abs, "Distance bound in absolute units (overrides --epsilon)")
       ->check(CLI::PositiveNumber);
+  root.add_option("--fill", o->pipeline.fill,
+                  "Regions to mesh: interior (the solid) or all (also the space out to a box, tets in \"exterior\", "
+                  "box faces in \"box\")")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, pipeline::FillRegion>{{"interior", pipeline::FillRegion::interior},
+                                                      {"all", pipeline::FillRegion::all}},
+          CLI::ignore_case))
+      ->default_str("interior");
+  root.add_option("--box-margin", o->pipeline.box_margin,
+                  "With --fill all: box margin around the shell, relative to its bbox diagonal")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  root.add_flag("!--no-optimize", o->pipeline.optimize,
+                "Skip the curved optimization (certified smoothing of the inner nodes)");
   root.add_flag("!--no-coarsen", o->pipeline.coarsen, "Keep the shell as dense as the input (no coarsening)");
   root.add_flag("!--flat-middle", o->pipeline.curved,
                 "Keep the middle surface flat (straight elements; coarser meshes come from the curved default)");

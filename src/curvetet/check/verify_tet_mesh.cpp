@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 namespace curvetet::check {
 
@@ -63,10 +64,64 @@ void check_positivity(const mesh::TetMesh& m, const TetMeshVerifyOptions& o, Tet
   if (n == 0) r.min_det_lower_bound = r.min_det_upper_bound = r.worst_scaled_jacobian = 0;
 }
 
-// Tet faces used once become the boundary; compares with the listed one.
-mesh::TetMesh check_conformity(const mesh::TetMesh& m, TetMeshVerification& r) {
+// Boundary triangles split by the region they bound (with one region, all of
+// them are the domain's), as meshes sharing the input's nodes.
+struct RegionBoundaries {
+  mesh::TetMesh domain; // nodes + the domain's boundary triangles
+  mesh::TetMesh outer;  // nodes + the exterior's outer triangles (the box)
+};
+
+// A tet face's (tet, local face) on the side it is seen from.
+struct FaceSide {
+  int tet = -1, face = -1;
+};
+
+// Whether the listed triangle `tri` is `side`'s face with the same
+// orientation and the same high-order nodes (counts the mismatch in r).
+bool matches_face(const mesh::TetMesh& m, const int* tri, const FaceSide& side, TetMeshVerification& r) {
+  const int* tet = m.tet(side.tet);
+  const int f = side.face;
+  int local[3]; // tet-local corner of the triangle's corners
+  for (int k = 0; k < 3; ++k)
+    for (int v = 0; v < 4; ++v)
+      if (tet[v] == tri[k]) local[k] = v;
+  int rot = 0;
+  while (highorder::kTetFaces[f][rot] != local[0]) ++rot;
+  if (highorder::kTetFaces[f][(rot + 1) % 3] != local[1]) {
+    ++r.boundary_flipped;
+    return false;
+  }
+  // Triangle node (a, b) sits at tet lattice point c0 + a/P (c1-c0) + b/P (c2-c0).
+  const int p = m.order;
+  const std::array<int, 3> corner[4] = {{0, 0, 0}, {p, 0, 0}, {0, p, 0}, {0, 0, p}};
+  for (int i = 0; i < m.triangle_nodes(); ++i) {
+    auto [a, bb] = highorder::triangle_node(p, i);
+    std::array<int, 3> q;
+    for (int k = 0; k < 3; ++k)
+      q[k] = corner[local[0]][k] + (a * (corner[local[1]][k] - corner[local[0]][k]) +
+                                    bb * (corner[local[2]][k] - corner[local[0]][k])) / p;
+    if (tet[highorder::tet_node_index(p, q)] != tri[i]) {
+      ++r.boundary_node_mismatch;
+      return false;
+    }
+  }
+  return true;
+}
+
+// Region faces: a face with exactly one domain tet bounds the domain (seen
+// from that tet); a face used once by an exterior tet is an outer face. The
+// listed triangles must be exactly these, seen from the right side.
+RegionBoundaries check_conformity(const mesh::TetMesh& m, TetMeshVerification& r) {
+  std::vector<char> exterior(m.num_tets(), 0);
+  if (static_cast<int>(m.tet_tags.size()) == m.num_tets()) {
+    const auto ext = std::count(m.tet_tags.begin(), m.tet_tags.end(), mesh::kExteriorTag);
+    if (ext > 0 && ext < m.num_tets())
+      for (int t = 0; t < m.num_tets(); ++t) exterior[t] = m.tet_tags[t] == mesh::kExteriorTag;
+    r.exterior_tets = std::count(exterior.begin(), exterior.end(), 1);
+  }
   struct Use {
-    int tet, face, count;
+    FaceSide side[2];
+    int count = 0;
   };
   std::map<std::array<int, 3>, Use> faces;
   for (int t = 0; t < m.num_tets(); ++t)
@@ -74,58 +129,65 @@ mesh::TetMesh check_conformity(const mesh::TetMesh& m, TetMeshVerification& r) {
       std::array<int, 3> c;
       for (int k = 0; k < 3; ++k) c[k] = m.tet(t)[highorder::kTetFaces[f][k]];
       std::sort(c.begin(), c.end());
-      auto [it, inserted] = faces.emplace(c, Use{t, f, 1});
-      if (!inserted && ++it->second.count == 3) ++r.overshared_faces;
+      Use& u = faces[c];
+      if (u.count < 2) u.side[u.count] = {t, f};
+      if (++u.count == 3) ++r.overshared_faces;
     }
-  mesh::TetMesh out = m;
-  if (m.num_boundary() == 0 && m.num_tets() > 0) {
-    // No boundary listed: derive it.
-    r.boundary_listed = false;
-    for (const auto& [key, use] : faces)
-      if (use.count == 1)
-        for (int n : highorder::tet_face_nodes(m.order, use.face)) out.boundary.push_back(m.tet(use.tet)[n]);
-    return out;
-  }
+  // The side a listed triangle on this face must be seen from, or none.
+  auto region_side = [&](const Use& u, bool& outer) -> std::optional<FaceSide> {
+    outer = false;
+    if (u.count == 1) {
+      outer = exterior[u.side[0].tet];
+      return u.side[0];
+    }
+    if (u.count == 2 && exterior[u.side[0].tet] != exterior[u.side[1].tet])
+      return exterior[u.side[0].tet] ? u.side[1] : u.side[0];
+    return std::nullopt;
+  };
+
+  RegionBoundaries out;
+  out.domain.order = out.outer.order = m.order;
+  out.domain.nodes = m.nodes;
+  auto append = [&](mesh::TetMesh& to, const int* tri) { to.boundary.insert(to.boundary.end(), tri, tri + m.triangle_nodes()); };
   std::map<std::array<int, 3>, int> listed;
+  bool any_outer = false;
   for (int b = 0; b < m.num_boundary(); ++b) {
     const int* tri = m.boundary_triangle(b);
     std::array<int, 3> c{tri[0], tri[1], tri[2]};
     std::sort(c.begin(), c.end());
     listed.emplace(c, b);
     auto it = faces.find(c);
-    if (it == faces.end() || it->second.count != 1) {
+    bool outer = false;
+    const auto side = it == faces.end() ? std::nullopt : region_side(it->second, outer);
+    if (!side) {
       ++r.boundary_extra;
       continue;
     }
-    // Align the listed triangle with the tet's outward face (a rotation).
-    const int* tet = m.tet(it->second.tet);
-    const int f = it->second.face;
-    int local[3]; // tet-local corner of the triangle's corners
-    for (int k = 0; k < 3; ++k)
-      for (int v = 0; v < 4; ++v)
-        if (tet[v] == tri[k]) local[k] = v;
-    int rot = 0;
-    while (highorder::kTetFaces[f][rot] != local[0]) ++rot;
-    if (highorder::kTetFaces[f][(rot + 1) % 3] != local[1]) {
-      ++r.boundary_flipped;
-      continue;
-    }
-    // Triangle node (a, b) sits at tet lattice point c0 + a/P (c1-c0) + b/P (c2-c0).
-    const int p = m.order;
-    const std::array<int, 3> corner[4] = {{0, 0, 0}, {p, 0, 0}, {0, p, 0}, {0, 0, p}};
-    bool same = true;
-    for (int i = 0; i < m.triangle_nodes() && same; ++i) {
-      auto [a, bb] = highorder::triangle_node(p, i);
-      std::array<int, 3> q;
-      for (int k = 0; k < 3; ++k)
-        q[k] = corner[local[0]][k] + (a * (corner[local[1]][k] - corner[local[0]][k]) +
-                                      bb * (corner[local[2]][k] - corner[local[0]][k])) / p;
-      same = tet[highorder::tet_node_index(p, q)] == tri[i];
-    }
-    if (!same) ++r.boundary_node_mismatch;
+    if (!matches_face(m, tri, *side, r)) continue;
+    append(outer ? out.outer : out.domain, tri);
+    any_outer |= outer;
   }
-  for (const auto& [key, use] : faces)
-    if (use.count == 1 && !listed.count(key)) ++r.boundary_missing;
+  const bool derive = m.num_boundary() == 0 && m.num_tets() > 0;
+  r.boundary_listed = !derive;
+  for (const auto& [key, use] : faces) {
+    bool outer = false;
+    const auto side = region_side(use, outer);
+    if (!side) continue;
+    if (outer)
+      ++r.outer_triangles;
+    else if (use.count == 2)
+      ++r.interface_triangles;
+    if (derive) {
+      // No boundary listed: derive it.
+      std::vector<int> tri;
+      for (int n : highorder::tet_face_nodes(m.order, side->face)) tri.push_back(m.tet(side->tet)[n]);
+      append(outer ? out.outer : out.domain, tri.data());
+      any_outer |= outer;
+    } else if (!listed.count(key)) {
+      ++r.boundary_missing;
+    }
+  }
+  if (any_outer) out.outer.nodes = m.nodes;
   return out;
 }
 
@@ -173,9 +235,12 @@ TetMeshVerification verify_tet_mesh(const mesh::TetMesh& m, const TetMeshVerifyO
   r.num_tets = m.num_tets();
   r.num_boundary = m.num_boundary();
   check_positivity(m, o, r);
-  mesh::TetMesh with_boundary = check_conformity(m, r);
+  RegionBoundaries boundaries = check_conformity(m, r);
   r.segments_per_edge = o.segments_per_edge > 0 ? o.segments_per_edge : 2 * m.order;
-  BoundaryLinearization lin = linearize_boundary(with_boundary, r.segments_per_edge);
+  if (boundaries.outer.num_boundary() > 0)
+    r.outer_surface =
+        check_preconditions(mesh::to_soup(linearize_boundary(boundaries.outer, r.segments_per_edge).surface));
+  BoundaryLinearization lin = linearize_boundary(boundaries.domain, r.segments_per_edge);
   r.linearized_faces = lin.surface.faces.size();
   r.surface = check_preconditions(mesh::to_soup(lin.surface));
   if (o.input) check_distances(lin, o, r);
@@ -199,6 +264,12 @@ std::string TetMeshVerification::text() const {
                    linearized_faces, surface.ok() ? "closed, manifold, oriented, no self-intersection" : "FAIL");
   if (!surface.ok())
     for (const auto& d : surface.defects) s += "    " + d.message + "\n";
+  if (exterior_tets > 0) {
+    s += fmt::format("  exterior region: {} tets, {} interface triangles, {} outer triangles: {}\n", exterior_tets,
+                     interface_triangles, outer_triangles,
+                     outer_surface.ok() ? "outer surface closed, manifold, oriented, no self-intersection" : "FAIL");
+    for (const auto& d : outer_surface.defects) s += "    " + d.message + "\n";
+  }
   if (has_input)
     s += fmt::format(
         "  distance (relative to input bbox diagonal {:.6g}): input->boundary max {:.3g} mean {:.3g}, "
@@ -233,6 +304,11 @@ nlohmann::json TetMeshVerification::json() const {
                      {"boundary_node_mismatch", boundary_node_mismatch}};
   j["boundary_surface"] = surface.json();
   j["boundary_surface"]["segments_per_edge"] = segments_per_edge;
+  if (exterior_tets > 0)
+    j["exterior"] = {{"tets", exterior_tets},
+                     {"interface_triangles", interface_triangles},
+                     {"outer_triangles", outer_triangles},
+                     {"outer_surface", outer_surface.json()}};
   j["boundary_surface"]["linearization"] =
       "exact predicates on a conforming flat triangulation of the curved boundary (segments_per_edge^2 per face)";
   if (has_input)

@@ -10,6 +10,13 @@
 //    boundary triangles are exactly the tet faces used once, outward, and
 //    carry the same high-order nodes as the tet face. (No listed boundary:
 //    the tet faces used once are taken as the boundary.)
+//    Two regions (pipeline `--fill all`): tets tagged mesh::kExteriorTag form
+//    the exterior, every other tet the domain. The domain's boundary (faces
+//    with exactly one domain tet: the interface with the exterior, plus any
+//    face used once) must be listed, oriented outward from the domain; the
+//    exterior's outer faces (the box) must be listed too, outward. Items 3
+//    and 4 concern the domain's boundary only; the outer faces get item 3's
+//    surface test on their own (`outer_surface`).
 // 3. Boundary surface: a conforming linearization of the curved boundary
 //    (check/boundary_linearization.hpp, s segments per edge) must pass the
 //    input preconditions exactly: closed, edge- and vertex-manifold,
@@ -58,11 +65,15 @@ struct TetMeshVerification {
   std::size_t boundary_flipped = 0;      // listed with inward orientation
   std::size_t boundary_node_mismatch = 0; // high-order nodes differ from the tet face
   bool boundary_listed = true;
+  std::size_t exterior_tets = 0;          // tets of the exterior region (0: one region)
+  std::size_t interface_triangles = 0;    // domain faces shared with an exterior tet
+  std::size_t outer_triangles = 0;        // exterior faces used once (the box)
 
   // Boundary surface.
   int segments_per_edge = 0;
   std::size_t linearized_faces = 0;
   PreconditionReport surface;
+  PreconditionReport outer_surface; // exterior's outer faces (empty and ok with one region)
 
   // Distances (with input).
   bool has_input = false;
@@ -76,7 +87,9 @@ struct TetMeshVerification {
            boundary_node_mismatch == 0;
   }
   bool distance_ok() const { return !has_input || input_to_boundary_max <= epsilon; }
-  bool ok() const { return positivity_ok() && conformity_ok() && surface.ok() && distance_ok(); }
+  bool ok() const {
+    return positivity_ok() && conformity_ok() && surface.ok() && outer_surface.ok() && distance_ok();
+  }
   std::string text() const;
   nlohmann::json json() const;
 };

@@ -103,7 +103,7 @@ TetQuality tet_quality(int order, const Eigen::Vector3d* nodes) {
   q.min_scaled_jacobian = std::numeric_limits<double>::infinity();
   double sum = 0, wsum = 0;
   for (std::size_t k = 0; k < samples.gradients.size(); ++k) {
-    const Eigen::Matrix3d j = x * samples.gradients[k];
+    const Eigen::Matrix3d j = x.lazyProduct(samples.gradients[k]);
     q.min_scaled_jacobian = std::min(q.min_scaled_jacobian, scaled_jacobian(j));
     if (k < samples.num_nodes) continue;
     const double w = samples.weights[k - samples.num_nodes];
@@ -114,6 +114,18 @@ TetQuality tet_quality(int order, const Eigen::Vector3d* nodes) {
   }
   q.mean_amips = sum / wsum;
   return q;
+}
+
+double tet_max_amips(int order, const Eigen::Vector3d* nodes) {
+  if (order < 1 || order > kMaxOrder) throw std::invalid_argument("tet_max_amips: order must be 1..8");
+  const TetSamples& samples = tet_samples(order);
+  const int n = tet_node_count(order);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> x(3, n);
+  for (int i = 0; i < n; ++i) x.col(i) = nodes[i];
+  double worst = 0;
+  for (std::size_t k = samples.num_nodes; k < samples.gradients.size(); ++k)
+    worst = std::max(worst, amips(x.lazyProduct(samples.gradients[k])));
+  return worst;
 }
 
 double triangle_max_mips(int order, const Eigen::Vector3d* nodes) {

@@ -25,6 +25,9 @@ struct TetQuality {
 };
 
 TetQuality tet_quality(int order, const Eigen::Vector3d* nodes);
+// Just tet_quality(...).max_amips, without the scaled Jacobians (the inner
+// loop of the curved optimization).
+double tet_max_amips(int order, const Eigen::Vector3d* nodes);
 
 // Pointwise measures (J = dx/dxi, columns u, v, w).
 double scaled_jacobian(const Eigen::Matrix3d& j);

@@ -8,4 +8,9 @@ void set_default_groups(TetMesh& m) {
   m.boundary_tags.assign(m.num_boundary(), kBoundaryTag);
 }
 
+void add_exterior_groups(TetMesh& m) {
+  m.groups.push_back({2, kBoxTag, "box"});
+  m.groups.push_back({3, kExteriorTag, "exterior"});
+}
+
 } // namespace curvetet::mesh

@@ -47,4 +47,12 @@ constexpr int kBoundaryTag = 1;
 constexpr int kDomainTag = 2;
 void set_default_groups(TetMesh& mesh);
 
+// With an exterior region (`--fill all`, flows around an obstacle): its tets
+// in "exterior" (dim 3, tag 3), the outer box faces in "box" (dim 2, tag 4).
+// The "boundary" triangles are then the interface between "domain" and
+// "exterior", still oriented outward from the domain.
+constexpr int kExteriorTag = 3;
+constexpr int kBoxTag = 4;
+void add_exterior_groups(TetMesh& mesh); // adds the two groups (tags are set by the caller)
+
 } // namespace curvetet::mesh

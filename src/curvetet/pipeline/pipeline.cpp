@@ -36,6 +36,17 @@ mesh::LinearTetMesh fill_inside(const mesh::SurfaceMesh& bottom, double offset, 
   return volume::fill_layered(ls, {}, &stats);
 }
 
+// Between the top surface and a box (vertices [0, n) = the top's).
+mesh::LinearTetMesh fill_outside(const mesh::SurfaceMesh& top, double offset, double margin, volume::FillStats& stats) {
+  shell::ExtrusionOptions ex;
+  ex.target_thickness = offset;
+  auto layer = shell::extrude_one_sided(top, shell::Side::outward, ex);
+  volume::LayeredSurface ls{top, layer.offset, volume::OffsetSide::outward};
+  volume::FillOptions fo;
+  fo.box_margin = margin;
+  return volume::fill_layered(ls, fo, &stats);
+}
+
 } // namespace
 
 PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOptions& o, Report& report) {
@@ -87,14 +98,43 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
     report["fill"] = {{"tets", fill.num_tets()}, {"max_amips", stats.max_amips}, {"mean_amips", stats.mean_amips}};
   }
 
+  mesh::LinearTetMesh exterior;
+  if (o.fill == FillRegion::all) {
+    StageTimer t(&report, "fill exterior");
+    volume::FillStats stats;
+    exterior = fill_outside(shell::top_surface(r.shell), o.fill_offset, o.box_margin, stats);
+    middle.top = r.shell.top;
+    report["fill_exterior"] = {{"tets", exterior.num_tets()}, {"max_amips", stats.max_amips}, {"mean_amips", stats.mean_amips}};
+  }
+
   {
     StageTimer t(&report, "assemble");
     volume::AssemblyStats stats;
-    r.mesh = volume::assemble_curved_mesh(middle, fill, o.order, &stats);
+    r.mesh = volume::assemble_curved_mesh(middle, fill, o.order, &stats,
+                                          o.fill == FillRegion::all ? &exterior : nullptr);
     report["assembly"] = {{"fill_tets", stats.fill_tets},
                           {"slab_tets", stats.slab_tets},
                           {"pinched_slab_tets", stats.pinched_slab_tets},
                           {"boundary_triangles", stats.boundary_triangles}};
+    if (o.fill == FillRegion::all)
+      report["assembly"].update({{"exterior_fill_tets", stats.exterior_fill_tets},
+                                 {"top_slab_tets", stats.top_slab_tets},
+                                 {"box_triangles", stats.box_triangles}});
+  }
+
+  if (o.optimize) {
+    StageTimer t(&report, "curved optimization");
+    const auto st = volume::optimize_curved(r.mesh, o.curved);
+    report["curved_optimization"] = {
+        {"max_amips_before", st.max_amips_before},   {"max_amips_after", st.max_amips_after},
+        {"mean_amips_before", st.mean_amips_before}, {"mean_amips_after", st.mean_amips_after},
+        {"min_scaled_jacobian_before", st.min_scaled_jacobian_before},
+        {"min_scaled_jacobian_after", st.min_scaled_jacobian_after},
+        {"vertex_moves", st.vertex_moves},           {"node_moves", st.node_moves},
+        {"rejected_quality", st.rejected_quality},   {"rejected_certificate", st.rejected_certificate},
+        {"passes", st.passes}};
+    logger().info("curved optimization: max AMIPS {:.4g} -> {:.4g}, {} vertex and {} node moves", st.max_amips_before,
+                  st.max_amips_after, st.vertex_moves, st.node_moves);
   }
 
   {

@@ -4,7 +4,7 @@
 //   shell::build_shell -> shell::coarsen_shell (under epsilon, fitting a
 //   curved middle of degree P-1 in every operation) -> fill inside the bottom
 //   surface (volume::fill_layered on the shell's one-sided extrusion) ->
-//   volume::assemble_curved_mesh -> check::verify_tet_mesh.
+//   volume::assemble_curved_mesh -> volume::optimize_curved -> check::verify_tet_mesh.
 // Each stage is timed into the report. Stages that later issues add
 // (coarsening, curved fit, curved optimization) slot in between without
 // changing this interface.
@@ -13,10 +13,16 @@
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/mesh/tet_mesh.hpp"
 #include "curvetet/shell/build.hpp"
+#include "curvetet/volume/curved_optimize.hpp"
 
 #include <optional>
 
 namespace curvetet::pipeline {
+
+// Which regions get tets: the solid inside the middle surface, or also the
+// space between it and a box around it (flows around an obstacle; the
+// exterior tets are tagged "exterior", the box faces "box").
+enum class FillRegion { interior, all };
 
 struct PipelineOptions {
   int order = 4;                       // P: output tets of order P, middle of degree P-1
@@ -26,6 +32,10 @@ struct PipelineOptions {
   bool coarsen = true;
   bool curved = true;                  // fit a degree P-1 middle while coarsening (else flat)
   double fill_offset = 0.01;           // inward offset of the bottom surface, x its bbox diagonal
+  FillRegion fill = FillRegion::interior;
+  double box_margin = 0.1;
+  bool optimize = true;                // curved optimization after the assembly
+  volume::CurvedOptimizeOptions curved;             // --fill all: the box grows the top's bbox by this x diagonal per side
 };
 
 struct PipelineResult {

@@ -6,27 +6,35 @@
 #include "curvetet/shell/prism_tets.hpp"
 
 #include <algorithm>
+#include <map>
 #include <stdexcept>
 
 namespace curvetet::volume {
 namespace {
+
+// Which linear cap a slab has beside the curved middle: bottom slabs run
+// B (w = 0) -> middle (w = 1), top slabs middle (w = 0) -> T (w = 1).
+enum class Cap { bottom, top };
 
 // How to place the order-P nodes of one tet: either barycentric in its four
 // corners (fill), or through the curved slab map of face `face` at the
 // reference corners `ref` (slab tets).
 struct TetSource {
   int face = -1;                             // -1: linear fill tet
+  Cap cap = Cap::bottom;
   std::array<std::array<double, 3>, 4> ref{}; // reference (u, v, w) of each corner
   std::array<bool, 4> on_middle{};            // corner is on the middle surface
   std::array<bool, 4> pinched{};              // corner is a singular vertex
 };
 
-mesh::Vec3 slab_point(const CurvedMiddle& s, int face, const std::array<double, 3>& uvw) {
-  const auto& f = s.faces[face];
+mesh::Vec3 slab_point(const CurvedMiddle& s, const TetSource& src, const std::array<double, 3>& uvw) {
+  const auto& f = s.faces[src.face];
+  const auto& cap = src.cap == Cap::bottom ? s.bottom : s.top;
   const double u = uvw[0], v = uvw[1], w = uvw[2];
-  const mesh::Vec3 bottom = (1 - u - v) * s.bottom[f[0]] + u * s.bottom[f[1]] + v * s.bottom[f[2]];
-  const mesh::Vec3 middle = highorder::triangle_point(s.degree, s.middle_nodes[face].data(), Eigen::Vector2d(u, v));
-  return (1 - w) * bottom + w * middle;
+  const mesh::Vec3 flat = (1 - u - v) * cap[f[0]] + u * cap[f[1]] + v * cap[f[2]];
+  const mesh::Vec3 middle =
+      highorder::triangle_point(s.degree, s.middle_nodes[src.face].data(), Eigen::Vector2d(u, v));
+  return src.cap == Cap::bottom ? (1 - w) * flat + w * middle : (1 - w) * middle + w * flat;
 }
 
 // The slab map has a zero w-derivative on a pinched pillar, so a tet placed
@@ -45,19 +53,88 @@ bool straight_near_pinch(const TetSource& src, const std::array<double, 4>& lamb
   return pinched && !on_middle;
 }
 
+
+// The 3 canonical tets of every slab on one side of the middle, appended to
+// `tets` / `sources`. lower[v] / upper[v]: corner ids of shell vertex v's
+// pillar ends in this slab. Bottom slabs also report their middle faces (the
+// domain's boundary) in `middle_faces` as (tet, local face).
+void add_slab_tets(const CurvedMiddle& s, Cap cap, const std::vector<int>& lower, const std::vector<int>& upper,
+                   std::vector<std::array<int, 4>>& tets, std::vector<TetSource>& sources, int& count, int& pinched,
+                   std::vector<std::pair<int, int>>* middle_faces) {
+  const std::vector<int>& on_middle_ids = cap == Cap::bottom ? upper : lower;
+  for (int f = 0; f < static_cast<int>(s.faces.size()); ++f) {
+    const auto& face = s.faces[f];
+    const std::array<int, 3> mid = {on_middle_ids[face[0]], on_middle_ids[face[1]], on_middle_ids[face[2]]};
+    for (const auto& st : shell::canonical_split(face)) {
+      if (s.singular[face[st.pillar]]) {
+        ++pinched;
+        continue;
+      }
+      std::array<int, 4> ids;
+      TetSource src;
+      src.face = f;
+      src.cap = cap;
+      for (int j = 0; j < 4; ++j) {
+        const int c = st.corners[j];
+        const bool is_upper = c >= 3;
+        ids[j] = is_upper ? upper[face[c - 3]] : lower[face[c]];
+        src.ref[j] = shell::reference_corner(c);
+        src.pinched[j] = s.singular[face[c % 3]];
+        src.on_middle[j] = is_upper == (cap == Cap::bottom) || src.pinched[j];
+        // A pinched corner is on the middle too: evaluate it there so that
+        // middle-surface nodes through it land on the curved patch.
+        if (src.pinched[j]) src.ref[j][2] = cap == Cap::bottom ? 1.0 : 0.0;
+      }
+      if (middle_faces)
+        for (int lf = 0; lf < 4; ++lf) {
+          int on = 0;
+          for (int c : highorder::kTetFaces[lf]) on += std::count(mid.begin(), mid.end(), ids[c]) > 0;
+          if (on == 3) middle_faces->emplace_back(static_cast<int>(tets.size()), lf);
+        }
+      tets.push_back(ids);
+      sources.push_back(src);
+      ++count;
+    }
+  }
+}
+
+// Faces of `ext` used by one tet whose corners are not all top vertices
+// (ids < num_top): the box, as (tet, local face), outward.
+std::vector<std::pair<int, int>> box_faces(const mesh::LinearTetMesh& ext, int num_top) {
+  std::map<std::array<int, 3>, std::pair<int, int>> once;
+  for (int t = 0; t < ext.num_tets(); ++t)
+    for (int lf = 0; lf < 4; ++lf) {
+      std::array<int, 3> key;
+      for (int k = 0; k < 3; ++k) key[k] = ext.tets[t][highorder::kTetFaces[lf][k]];
+      std::sort(key.begin(), key.end());
+      auto [it, inserted] = once.emplace(key, std::make_pair(t, lf));
+      if (!inserted) once.erase(it);
+    }
+  std::vector<std::pair<int, int>> out;
+  for (const auto& [key, use] : once)
+    if (key[2] >= num_top) out.push_back(use);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 } // namespace
 
 mesh::TetMesh assemble_curved_mesh(const CurvedMiddle& s, const mesh::LinearTetMesh& fill, int order,
-                                   AssemblyStats* stats_out) {
+                                   AssemblyStats* stats_out, const mesh::LinearTetMesh* exterior) {
   const int nb = static_cast<int>(s.bottom.size());
   if (fill.num_vertices() < nb) throw std::invalid_argument("assemble: fill lacks the bottom vertices");
+  if (exterior && (static_cast<int>(s.top.size()) != nb || exterior->num_vertices() < nb))
+    throw std::invalid_argument("assemble: the exterior needs the top vertices");
   AssemblyStats stats;
 
   // Corner vertices: the fill's, then one middle vertex per non-singular
-  // shell vertex (a singular vertex's middle is its bottom).
+  // shell vertex (a singular vertex's middle is its bottom), then with an
+  // exterior one top vertex per non-singular shell vertex and the exterior
+  // fill's own vertices.
   std::vector<mesh::Vec3> corners = fill.vertices;
-  std::vector<int> middle_id(nb);
+  std::vector<int> bottom_id(nb), middle_id(nb), top_id(nb);
   for (int v = 0; v < nb; ++v) {
+    bottom_id[v] = v;
     if (s.singular[v]) {
       middle_id[v] = v;
       continue;
@@ -71,39 +148,29 @@ mesh::TetMesh assemble_curved_mesh(const CurvedMiddle& s, const mesh::LinearTetM
   std::vector<std::array<int, 4>> tets = fill.tets;
   std::vector<TetSource> sources(tets.size());
   stats.fill_tets = static_cast<int>(tets.size());
-  std::vector<std::pair<int, int>> boundary_faces;
-  for (int f = 0; f < static_cast<int>(s.faces.size()); ++f) {
-    const auto& face = s.faces[f];
-    const std::array<int, 3> top = {middle_id[face[0]], middle_id[face[1]], middle_id[face[2]]};
-    for (const auto& st : shell::canonical_split(face)) {
-      if (s.singular[face[st.pillar]]) {
-        ++stats.pinched_slab_tets;
-        continue;
-      }
-      std::array<int, 4> ids;
-      TetSource src;
-      src.face = f;
-      for (int j = 0; j < 4; ++j) {
-        const int c = st.corners[j];
-        ids[j] = c < 3 ? face[c] : middle_id[face[c - 3]];
-        src.ref[j] = shell::reference_corner(c);
-        src.pinched[j] = s.singular[face[c % 3]];
-        src.on_middle[j] = c >= 3 || src.pinched[j];
-        // A pinched corner is its upper corner too: evaluate it at w = 1 so
-        // that middle-surface nodes through it land on the curved patch.
-        if (src.pinched[j]) src.ref[j][2] = 1.0;
-      }
-      // The tet face whose corners are the three middle vertices lies on the
-      // middle surface: it is a boundary triangle.
-      for (int lf = 0; lf < 4; ++lf) {
-        int on_top = 0;
-        for (int c : highorder::kTetFaces[lf]) on_top += std::count(top.begin(), top.end(), ids[c]) > 0;
-        if (on_top == 3) boundary_faces.emplace_back(static_cast<int>(tets.size()), lf);
-      }
-      tets.push_back(ids);
-      sources.push_back(src);
-      ++stats.slab_tets;
+  std::vector<std::pair<int, int>> boundary_faces, outer_faces;
+  add_slab_tets(s, Cap::bottom, bottom_id, middle_id, tets, sources, stats.slab_tets, stats.pinched_slab_tets,
+                &boundary_faces);
+  const int interior_tets = static_cast<int>(tets.size());
+
+  if (exterior) {
+    std::vector<int> ext_id(exterior->num_vertices());
+    for (int v = 0; v < nb; ++v) {
+      top_id[v] = s.singular[v] ? middle_id[v] : static_cast<int>(corners.size());
+      if (!s.singular[v]) corners.push_back(s.top[v]);
+      ext_id[v] = top_id[v];
     }
+    for (int v = nb; v < exterior->num_vertices(); ++v) {
+      ext_id[v] = static_cast<int>(corners.size());
+      corners.push_back(exterior->vertices[v]);
+    }
+    const int first = static_cast<int>(tets.size());
+    for (const auto& t : exterior->tets) tets.push_back({ext_id[t[0]], ext_id[t[1]], ext_id[t[2]], ext_id[t[3]]});
+    sources.resize(tets.size());
+    stats.exterior_fill_tets = exterior->num_tets();
+    for (const auto& [t, lf] : box_faces(*exterior, nb)) outer_faces.emplace_back(first + t, lf);
+    int pinched_top = 0;
+    add_slab_tets(s, Cap::top, middle_id, top_id, tets, sources, stats.top_slab_tets, pinched_top, nullptr);
   }
 
   const auto numbering = highorder::number_tet_nodes(static_cast<int>(corners.size()), tets, order);
@@ -133,7 +200,7 @@ mesh::TetMesh assemble_curved_mesh(const CurvedMiddle& s, const mesh::LinearTetM
         std::array<double, 3> uvw{0, 0, 0};
         for (int j = 0; j < 4; ++j)
           for (int d = 0; d < 3; ++d) uvw[d] += lambda[j] * src.ref[j][d];
-        x = slab_point(s, src.face, uvw);
+        x = slab_point(s, src, uvw);
       }
       if (!placed[g]) {
         out.nodes[g] = x;
@@ -144,13 +211,17 @@ mesh::TetMesh assemble_curved_mesh(const CurvedMiddle& s, const mesh::LinearTetM
     }
   }
   out.tets = numbering.tet_nodes;
-  out.tet_tags.assign(tets.size(), mesh::kDomainTag);
-
-  for (const auto& [t, lf] : boundary_faces)
-    for (int i : highorder::tet_face_nodes(order, lf)) out.boundary.push_back(numbering.tet_nodes[t * per_tet + i]);
-  out.boundary_tags.assign(boundary_faces.size(), mesh::kBoundaryTag);
+  for (const auto& faces : {boundary_faces, outer_faces})
+    for (const auto& [t, lf] : faces)
+      for (int i : highorder::tet_face_nodes(order, lf)) out.boundary.push_back(numbering.tet_nodes[t * per_tet + i]);
   stats.boundary_triangles = static_cast<int>(boundary_faces.size());
+  stats.box_triangles = static_cast<int>(outer_faces.size());
   mesh::set_default_groups(out);
+  if (exterior) {
+    std::fill(out.tet_tags.begin() + interior_tets, out.tet_tags.end(), mesh::kExteriorTag);
+    std::fill(out.boundary_tags.begin() + stats.boundary_triangles, out.boundary_tags.end(), mesh::kBoxTag);
+    mesh::add_exterior_groups(out);
+  }
   if (stats_out) *stats_out = stats;
   return out;
 }

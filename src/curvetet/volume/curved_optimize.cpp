@@ -1,0 +1,292 @@
+#include "curvetet/volume/curved_optimize.hpp"
+
+#include "curvetet/highorder/conforming_nodes.hpp"
+#include "curvetet/highorder/jacobian_certificate.hpp"
+#include "curvetet/highorder/quality.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <vector>
+
+namespace curvetet::volume {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+// The nodes a move displaces (with their weight on the displacement) and the
+// tets whose shape it changes.
+struct Move {
+  std::vector<std::pair<int, double>> nodes;
+  std::vector<int> tets;
+};
+
+class CurvedOptimizer {
+ public:
+  CurvedOptimizer(mesh::TetMesh& m, const CurvedOptimizeOptions& o) : m_(m), o_(o), np_(m.tet_nodes()) {
+    const int n = static_cast<int>(m.nodes.size());
+    frozen_.assign(n, 0);
+    for (int id : m.boundary) frozen_[id] = 1;
+    // node -> (tet, local index), CSR.
+    offset_.assign(n + 1, 0);
+    for (int id : m.tets) ++offset_[id + 1];
+    std::partial_sum(offset_.begin(), offset_.end(), offset_.begin());
+    uses_.resize(m.tets.size());
+    std::vector<int> fill(offset_.begin(), offset_.end() - 1);
+    for (int t = 0; t < m.num_tets(); ++t)
+      for (int i = 0; i < np_; ++i) {
+        const int id = m.tet(t)[i];
+        uses_[fill[id]++] = {t, i};
+      }
+    for (int i = 0; i < np_; ++i) barycentric_.push_back(highorder::tet_node_barycentric(m.order, i));
+    amips_.assign(m.num_tets(), 0);
+    refresh_all();
+  }
+
+  void refresh_all() {
+    tbb::parallel_for(0, m_.num_tets(), [&](int t) { amips_[t] = tet_amips(t); });
+  }
+
+  const std::vector<double>& amips() const { return amips_; }
+
+  // One sweep over the tets at or above the threshold, worst first.
+  void sweep(double threshold, CurvedOptimizeStats& stats) {
+    std::vector<int> bad;
+    for (int t = 0; t < m_.num_tets(); ++t)
+      if (amips_[t] >= threshold) bad.push_back(t);
+    std::stable_sort(bad.begin(), bad.end(), [&](int a, int b) { return amips_[a] > amips_[b]; });
+    std::vector<char> tried(m_.nodes.size(), 0);
+    for (int t : bad) {
+      if (amips_[t] < threshold) continue; // improved by an earlier move
+      for (int i = 0; i < np_; ++i) {
+        const int id = m_.tet(t)[i];
+        if (frozen_[id] || tried[id]) continue;
+        const bool is_corner = i < 4;
+        if (is_corner ? !o_.move_vertices : !o_.move_nodes) continue;
+        tried[id] = 1;
+        const Move mv = is_corner ? vertex_move(id) : node_move(id);
+        if (mv.nodes.empty()) continue;
+        // Moving one high-order node of a straight tet changes its Jacobian
+        // by d (x) grad(phi_node), whose sign varies over the tet, so its max
+        // AMIPS rises to first order: only try when the worst touched tet is
+        // already curved.
+        if (!is_corner && straight(worst_of(mv.tets))) continue;
+        if (try_move(mv, stats)) ++(is_corner ? stats.vertex_moves : stats.node_moves);
+      }
+    }
+  }
+
+ private:
+  // Whether every node of tet t is where its corners' affine map puts it
+  // (then its Jacobian is constant).
+  bool straight(int t) const {
+    const int* ids = m_.tet(t);
+    const Vec3 &a = m_.nodes[ids[0]], &b = m_.nodes[ids[1]], &c = m_.nodes[ids[2]], &d = m_.nodes[ids[3]];
+    const double scale = std::max({(b - a).cwiseAbs().maxCoeff(), (c - a).cwiseAbs().maxCoeff(),
+                                   (d - a).cwiseAbs().maxCoeff()});
+    for (int i = 4; i < np_; ++i) {
+      const auto& w = barycentric_[i];
+      const Vec3 affine = w[0] * a + w[1] * b + w[2] * c + w[3] * d;
+      if ((m_.nodes[ids[i]] - affine).cwiseAbs().maxCoeff() > 1e-12 * scale) return false;
+    }
+    return true;
+  }
+
+  // Max AMIPS of tet t (one evaluation when straight).
+  double tet_amips(int t) const {
+    const int* ids = m_.tet(t);
+    if (straight(t)) {
+      Eigen::Matrix3d j;
+      j << m_.nodes[ids[1]] - m_.nodes[ids[0]], m_.nodes[ids[2]] - m_.nodes[ids[0]], m_.nodes[ids[3]] - m_.nodes[ids[0]];
+      return highorder::amips(j);
+    }
+    Vec3 nodes[165]; // order <= 8
+    for (int i = 0; i < np_; ++i) nodes[i] = m_.nodes[ids[i]];
+    return highorder::tet_max_amips(m_.order, nodes);
+  }
+
+  bool certified(int t) const {
+    Vec3 nodes[165];
+    for (int i = 0; i < np_; ++i) nodes[i] = m_.nodes[m_.tet(t)[i]];
+    return highorder::certify_tet(m_.order, nodes).validity == highorder::Validity::positive;
+  }
+
+  // Corner v and the star's nodes weighted by their barycentric weight on v.
+  // Empty when a node with a non-zero weight is frozen.
+  Move vertex_move(int v) const {
+    Move mv;
+    for (int k = offset_[v]; k < offset_[v + 1]; ++k) {
+      const auto [t, local] = uses_[k];
+      mv.tets.push_back(t);
+      for (int i = 0; i < np_; ++i) {
+        const double w = barycentric_[i][local];
+        if (w == 0) continue;
+        const int id = m_.tet(t)[i];
+        if (frozen_[id]) return {};
+        mv.nodes.emplace_back(id, w);
+      }
+    }
+    std::sort(mv.nodes.begin(), mv.nodes.end());
+    mv.nodes.erase(std::unique(mv.nodes.begin(), mv.nodes.end(),
+                               [](const auto& a, const auto& b) { return a.first == b.first; }),
+                   mv.nodes.end());
+    std::sort(mv.tets.begin(), mv.tets.end());
+    mv.tets.erase(std::unique(mv.tets.begin(), mv.tets.end()), mv.tets.end());
+    return mv;
+  }
+
+  int worst_of(const std::vector<int>& tets) const {
+    return *std::max_element(tets.begin(), tets.end(), [&](int a, int b) { return amips_[a] < amips_[b]; });
+  }
+
+  Move node_move(int id) const {
+    Move mv;
+    mv.nodes.emplace_back(id, 1.0);
+    for (int k = offset_[id]; k < offset_[id + 1]; ++k) mv.tets.push_back(uses_[k].first);
+    std::sort(mv.tets.begin(), mv.tets.end());
+    mv.tets.erase(std::unique(mv.tets.begin(), mv.tets.end()), mv.tets.end());
+    return mv;
+  }
+
+  // Max AMIPS over `tets`; stops early (returning a value >= bound) once a
+  // tet reaches `bound`.
+  double objective(const std::vector<int>& tets, double bound = std::numeric_limits<double>::infinity()) const {
+    double worst = 0;
+    for (int t : tets) {
+      worst = std::max(worst, tet_amips(t));
+      if (worst >= bound) break;
+    }
+    return worst;
+  }
+
+  void place(const Move& mv, const std::vector<Vec3>& saved, const Vec3& d) {
+    for (std::size_t k = 0; k < mv.nodes.size(); ++k) m_.nodes[mv.nodes[k].first] = saved[k] + mv.nodes[k].second * d;
+  }
+
+  // Shortest corner edge of the touched tets: the scale of the steps.
+  double edge_scale(const Move& mv) const {
+    double h = std::numeric_limits<double>::infinity();
+    for (int t : mv.tets)
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) h = std::min(h, (m_.nodes[m_.tet(t)[a]] - m_.nodes[m_.tet(t)[b]]).norm());
+    return h;
+  }
+
+  bool try_move(const Move& mv, CurvedOptimizeStats& stats) {
+    std::vector<Vec3> saved;
+    for (const auto& [id, w] : mv.nodes) saved.push_back(m_.nodes[id]);
+    double f0 = 0;
+    for (int t : mv.tets) f0 = std::max(f0, amips_[t]);
+    const double h = edge_scale(mv);
+    if (!(h > 0) || !std::isfinite(f0)) return false;
+
+    // Touched tets worst first; the ones near the max decide the direction.
+    std::vector<int> order = mv.tets, active;
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return amips_[a] > amips_[b]; });
+    for (int t : order)
+      if (amips_[t] >= 0.5 * f0) active.push_back(t);
+
+    // Descent direction of the max AMIPS, central differences.
+    const double fd = 1e-5 * h;
+    Vec3 g = Vec3::Zero();
+    for (int a = 0; a < 3; ++a) {
+      Vec3 e = Vec3::Zero();
+      e[a] = fd;
+      place(mv, saved, e);
+      const double plus = objective(active);
+      place(mv, saved, -e);
+      const double minus = objective(active);
+      if (std::isfinite(plus) && std::isfinite(minus)) g[a] = (plus - minus) / (2 * fd);
+    }
+    place(mv, saved, Vec3::Zero());
+    if (!(g.norm() > 0)) {
+      ++stats.rejected_quality;
+      return false;
+    }
+    const Vec3 dir = -g.normalized();
+
+    bool certificate_failed = false;
+    double step = 0.25 * h;
+    for (int s = 0; s < o_.line_search_steps; ++s, step *= 0.5) {
+      place(mv, saved, step * dir);
+      const double bound = f0 * (1 - 1e-6);
+      if (!(objective(order, bound) < bound)) continue;
+      bool ok = true;
+      for (int t : order) ok = ok && certified(t);
+      if (!ok) {
+        certificate_failed = true;
+        continue;
+      }
+      for (int t : order) amips_[t] = tet_amips(t);
+      return true;
+    }
+    place(mv, saved, Vec3::Zero()); // saved + 0 * d: bit-exact restore
+    ++(certificate_failed ? stats.rejected_certificate : stats.rejected_quality);
+    return false;
+  }
+
+  mesh::TetMesh& m_;
+  const CurvedOptimizeOptions& o_;
+  const int np_;
+  std::vector<char> frozen_; // nodes of listed boundary triangles
+  std::vector<int> offset_;
+  std::vector<std::pair<int, int>> uses_;
+  std::vector<double> amips_;
+  std::vector<std::array<double, 4>> barycentric_; // of each local node
+};
+
+struct Summary {
+  double max_amips = 0, mean_amips = 0, min_scaled_jacobian = 0;
+};
+
+Summary summarize(const mesh::TetMesh& m) {
+  const int n = m.num_tets();
+  std::vector<highorder::TetQuality> q(n);
+  tbb::parallel_for(0, n, [&](int t) {
+    std::vector<Vec3> nodes(m.tet_nodes());
+    for (int i = 0; i < m.tet_nodes(); ++i) nodes[i] = m.nodes[m.tet(t)[i]];
+    q[t] = highorder::tet_quality(m.order, nodes.data());
+  });
+  Summary s;
+  s.min_scaled_jacobian = n ? std::numeric_limits<double>::infinity() : 0;
+  for (const auto& x : q) {
+    s.max_amips = std::max(s.max_amips, x.max_amips);
+    s.mean_amips += x.mean_amips / n;
+    s.min_scaled_jacobian = std::min(s.min_scaled_jacobian, x.min_scaled_jacobian);
+  }
+  return s;
+}
+
+} // namespace
+
+CurvedOptimizeStats optimize_curved(mesh::TetMesh& m, const CurvedOptimizeOptions& o) {
+  CurvedOptimizeStats stats;
+  const Summary before = summarize(m);
+  stats.max_amips_before = before.max_amips;
+  stats.mean_amips_before = before.mean_amips;
+  stats.min_scaled_jacobian_before = before.min_scaled_jacobian;
+  if (m.num_tets() > 0) {
+    CurvedOptimizer opt(m, o);
+    for (int pass = 0; pass < o.passes; ++pass) {
+      std::vector<double> sorted = opt.amips();
+      const std::size_t k = std::min(sorted.size() - 1, static_cast<std::size_t>(o.bad_fraction * sorted.size()));
+      std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end(), std::greater<>());
+      const double threshold = std::max(o.min_amips, sorted[k]);
+      const int moves = stats.vertex_moves + stats.node_moves;
+      opt.sweep(threshold, stats);
+      ++stats.passes;
+      if (stats.vertex_moves + stats.node_moves == moves) break;
+    }
+  }
+  const Summary after = summarize(m);
+  stats.max_amips_after = after.max_amips;
+  stats.mean_amips_after = after.mean_amips;
+  stats.min_scaled_jacobian_after = after.min_scaled_jacobian;
+  return stats;
+}
+
+} // namespace curvetet::volume

@@ -1,0 +1,48 @@
+#pragma once
+// Curved optimization of the assembled mesh (paper §4.3, end; DESIGN.md §1
+// volume::optimize_curved): smoothing that lowers the max AMIPS of the
+// order-P tets (highorder/quality.hpp: AMIPS at quadrature points) while the
+// boundary stays exactly where it is.
+//
+// Two local moves, each a transaction on the tets it touches:
+//  - vertex move: a corner vertex v not on any listed boundary triangle moves
+//    by d, and every node of its star moves by lambda_v(node) d, lambda_v the
+//    node's barycentric weight on v (1 at v, 0 on the faces opposite v), so
+//    the star's straight parts stay straight and nodes away from v stay put;
+//  - node move: one high-order node (edge, face or interior) not on a listed
+//    boundary triangle moves by d; tried only when the worst tet it touches
+//    is curved (bending a straight tet raises its max AMIPS).
+// d is a descent direction of the touched tets' max AMIPS (central finite
+// differences), tried with halving steps. A move is kept only if the max
+// AMIPS of the touched tets decreases AND highorder::certify_tet says
+// `positive` for every touched tet (undecided = rejected); otherwise the
+// nodes are restored bit for bit. Nodes of listed boundary triangles (the
+// middle surface, and with an exterior the box) never move, so the boundary
+// and the map onto it are unchanged. Precondition: every tet certified
+// positive (the assembly's verification); then so is the result.
+// Deterministic: sequential, tets visited worst first (ties by index).
+#include "curvetet/mesh/tet_mesh.hpp"
+
+namespace curvetet::volume {
+
+struct CurvedOptimizeOptions {
+  int passes = 10;              // sweeps over the bad tets (stops early when one moves nothing)
+  double bad_fraction = 0.25;   // a sweep visits tets whose max AMIPS >= this quantile from the top...
+  double min_amips = 4.0;       // ...and above this value
+  int line_search_steps = 6;    // step halvings per move
+  bool move_vertices = true;
+  bool move_nodes = true;
+};
+
+struct CurvedOptimizeStats {
+  double max_amips_before = 0, mean_amips_before = 0, min_scaled_jacobian_before = 0;
+  double max_amips_after = 0, mean_amips_after = 0, min_scaled_jacobian_after = 0;
+  int vertex_moves = 0, node_moves = 0;     // accepted
+  int rejected_quality = 0;                 // no step lowered the max AMIPS
+  int rejected_certificate = 0;             // lower AMIPS but a tet not certified positive
+  int passes = 0;
+};
+
+CurvedOptimizeStats optimize_curved(mesh::TetMesh& mesh, const CurvedOptimizeOptions& options = {});
+
+} // namespace curvetet::volume
