@@ -49,7 +49,7 @@ std::function<int()> add_mesh_options(CLI::App& root) {
   root.add_flag("!--no-optimize", o->pipeline.optimize,
                 "Skip the curved optimization (certified smoothing of the inner nodes)");
   root.add_flag("!--no-coarsen", o->pipeline.coarsen, "Keep the shell as dense as the input (no coarsening)");
-  root.add_flag("!--flat-middle", o->pipeline.curved,
+  root.add_flag("!--flat-middle", o->pipeline.curved_middle,
                 "Keep the middle surface flat (straight elements; coarser meshes come from the curved default)");
   root.add_option("--vtu", o->vtu, "Also write a VTK Lagrange .vtu (for ParaView)");
   root.add_flag("--binary", o->binary, "Write the .msh in binary");

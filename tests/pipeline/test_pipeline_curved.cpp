@@ -17,7 +17,7 @@ pipeline::PipelineResult run(const mesh::SurfaceMesh& input, bool curved, Report
   pipeline::PipelineOptions o;
   o.order = 4;
   o.epsilon = 0.01;
-  o.curved = curved;
+  o.curved_middle = curved;
   return pipeline::run_pipeline(input, o, report);
 }
 

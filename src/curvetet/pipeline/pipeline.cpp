@@ -74,10 +74,12 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
     co.debug_invariants = o.shell.debug_invariants;
     // Middle of degree P-1 (paper §4.1); P = 2 keeps it flat.
     std::unique_ptr<shell::MiddleFit> fit;
-    if (o.order > 2 && o.curved) fit = std::make_unique<shell::CurvedMiddleFit>(o.order - 1);
+    if (o.order > 2 && o.curved_middle) fit = std::make_unique<shell::CurvedMiddleFit>(o.order - 1);
     const auto c = shell::coarsen_shell(r.shell, co, fit.get());
     report["coarsen"] = {{"faces_before", c.faces_before}, {"faces_after", c.faces_after},
-                         {"rounds", c.rounds},             {"middle_degree", r.shell.middle_nodes.empty() ? 1 : r.shell.middle_degree},             {"max_distance_relative", c.max_distance / diagonal},
+                         {"rounds", c.rounds},
+                         {"middle_degree", r.shell.middle_nodes.empty() ? 1 : r.shell.middle_degree},
+                         {"max_distance_relative", c.max_distance / diagonal},
                          {"epsilon_relative", epsilon_rel}};
     if (const auto* curved = dynamic_cast<const shell::CurvedMiddleFit*>(fit.get()))
       report["coarsen"]["curved_middle"] = curved->stats().json();
@@ -124,7 +126,7 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
 
   if (o.optimize) {
     StageTimer t(&report, "curved optimization");
-    const auto st = volume::optimize_curved(r.mesh, o.curved);
+    const auto st = volume::optimize_curved(r.mesh, o.optimization);
     report["curved_optimization"] = {
         {"max_amips_before", st.max_amips_before},   {"max_amips_after", st.max_amips_after},
         {"mean_amips_before", st.mean_amips_before}, {"mean_amips_after", st.mean_amips_after},

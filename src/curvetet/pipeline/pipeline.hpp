@@ -30,12 +30,12 @@ struct PipelineOptions {
   std::optional<double> epsilon_abs;   // absolute distance bound (overrides epsilon)
   shell::ShellOptions shell;
   bool coarsen = true;
-  bool curved = true;                  // fit a degree P-1 middle while coarsening (else flat)
+  bool curved_middle = true;           // fit a degree P-1 middle while coarsening (else flat)
   double fill_offset = 0.01;           // inward offset of the bottom surface, x its bbox diagonal
   FillRegion fill = FillRegion::interior;
-  double box_margin = 0.1;
+  double box_margin = 0.1;             // --fill all: the box grows the top's bbox by this x diagonal per side
   bool optimize = true;                // curved optimization after the assembly
-  volume::CurvedOptimizeOptions curved;             // --fill all: the box grows the top's bbox by this x diagonal per side
+  volume::CurvedOptimizeOptions optimization;
 };
 
 struct PipelineResult {
