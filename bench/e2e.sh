@@ -5,7 +5,8 @@
 # Usage: bench/e2e.sh [--args "EXTRA CURVETET ARGS"] [MESH...]
 #   E2E_TIMEOUT=seconds per model (default 1800; exit 124 = timed out)
 #   default meshes: every ../shared/data/good/*.off, smallest first.
-# Extra columns come from each run's report (--report): input faces, output
+# Each mesh is written to a temporary directory (kept: its path is printed
+# last). Extra columns come from each run's report (--report): input faces, output
 # tets, boundary faces and quality (max/mean AMIPS, min scaled Jacobian; when
 # the run writes a mesh).
 set -euo pipefail
@@ -24,7 +25,7 @@ echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for m in "${meshes[@]}"; do
   name=$(basename "$m" .off)
   set +e
-  /usr/bin/time -f "%e %M" -o "$out/time" timeout "${E2E_TIMEOUT:-1800}" "$bin" -q "$m" --report "$out/$name.json" $extra >/dev/null 2>"$out/$name.log"
+  /usr/bin/time -f "%e %M" -o "$out/time" timeout "${E2E_TIMEOUT:-1800}" "$bin" -q "$m" -o "$out/$name.msh" --report "$out/$name.json" $extra >/dev/null 2>"$out/$name.log"
   code=$?
   set -e
   read -r wall kib < <(tail -1 "$out/time")
@@ -40,3 +41,5 @@ PY
 )
   echo "| $name | $row | $wall | $((kib / 1024)) | $code |"
 done
+echo
+echo "meshes, reports and logs: $out"

@@ -4,7 +4,7 @@
 // tet positive (its AnalyseMeshQuality plugin, det J sampled densely, minSJ)
 // and every input vertex within epsilon of the curved boundary, sampled
 // through Gmsh's own element map. Skipped only when /usr/bin/python3 lacks
-// gmsh or scipy.
+// gmsh or numpy.
 #include "support/run_command.hpp"
 
 #include <gtest/gtest.h>
@@ -17,7 +17,7 @@
 namespace {
 
 bool python_gmsh_available() {
-  return std::system("/usr/bin/python3 -c 'import gmsh, numpy, scipy' > /dev/null 2>&1") == 0;
+  return std::system("/usr/bin/python3 -c 'import gmsh, numpy' > /dev/null 2>&1") == 0;
 }
 
 struct Run {
@@ -49,7 +49,7 @@ std::string gmsh_check(const Run& r, const std::string& input, double epsilon) {
 } // namespace
 
 TEST(PipelineGmsh, SpotOrder4IsPositiveAndWithinEpsilonForGmsh) {
-  if (!python_gmsh_available()) GTEST_SKIP() << "/usr/bin/python3 lacks gmsh, numpy or scipy";
+  if (!python_gmsh_available()) GTEST_SKIP() << "/usr/bin/python3 lacks gmsh or numpy";
   const std::string input = CURVETET_SOURCE_DIR "/examples/spot.off";
   const double epsilon = 0.01;
   auto run = run_main(input, "spot", "--order 4 --epsilon 0.01");
@@ -67,9 +67,9 @@ TEST(PipelineGmsh, SpotOrder4IsPositiveAndWithinEpsilonForGmsh) {
   EXPECT_NE(out.out.find("AnalyseMeshQuality:"), std::string::npos) << out.out;
   EXPECT_NE(out.out.find("distance:"), std::string::npos) << out.out;
 
-  // The same checker fails on a distance bound the mesh cannot meet (a
-  // checker that always passes would not).
-  auto strict = curvetet::test::run_command(gmsh_check(run, input, 1e-6));
+  // The same checker fails on a distance bound the mesh cannot meet (its
+  // input->boundary max is near 1e-2, the mean near 3e-3).
+  auto strict = curvetet::test::run_command(gmsh_check(run, input, 1e-3));
   EXPECT_NE(strict.exit_code, 0) << strict.out;
   EXPECT_NE(strict.out.find("FAIL: input vertex"), std::string::npos) << strict.out;
 }
@@ -79,7 +79,7 @@ TEST(PipelineGmsh, SpotOrder4IsPositiveAndWithinEpsilonForGmsh) {
 // interface) within epsilon; `curvetet check` re-verifies the written file
 // with its two regions.
 TEST(PipelineGmsh, FillAllMeshesTheExteriorForGmshAndCheck) {
-  if (!python_gmsh_available()) GTEST_SKIP() << "/usr/bin/python3 lacks gmsh, numpy or scipy";
+  if (!python_gmsh_available()) GTEST_SKIP() << "/usr/bin/python3 lacks gmsh or numpy";
   const std::string input = CURVETET_SOURCE_DIR "/examples/spot.off";
   auto run = run_main(input, "spot_all", "--order 4 --epsilon 0.01 --fill all");
   ASSERT_TRUE(std::filesystem::exists(run.msh));

@@ -92,3 +92,17 @@ TEST(CurvedOptimize, NothingMovesWhenEveryNodeIsOnTheBoundary) {
   EXPECT_EQ(m.nodes, before);
   EXPECT_EQ(stats.max_amips_before, stats.max_amips_after);
 }
+
+TEST(CurvedOptimize, UnlistedHullStaysPutToo) {
+  // The same mesh without its boundary list: the faces used once are frozen.
+  auto m = bad_mesh(3);
+  const auto listed = m.boundary;
+  m.boundary.clear();
+  m.boundary_tags.clear();
+  const auto before = m.nodes;
+  volume::CurvedOptimizeOptions o;
+  o.bad_fraction = 1.0;
+  const auto stats = volume::optimize_curved(m, o);
+  EXPECT_GT(stats.vertex_moves + stats.node_moves, 0);
+  for (int id : listed) EXPECT_EQ(m.nodes[id], before[id]) << "node " << id;
+}

@@ -2,6 +2,7 @@
 
 #include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/jacobian_certificate.hpp"
+#include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/highorder/quality.hpp"
 
 #include <tbb/parallel_for.h>
@@ -31,6 +32,7 @@ class CurvedOptimizer {
     const int n = static_cast<int>(m.nodes.size());
     frozen_.assign(n, 0);
     for (int id : m.boundary) frozen_[id] = 1;
+    freeze_hull();
     // node -> (tet, local index), CSR.
     offset_.assign(n + 1, 0);
     for (int id : m.tets) ++offset_[id + 1];
@@ -71,9 +73,9 @@ class CurvedOptimizer {
         const Move mv = is_corner ? vertex_move(id) : node_move(id);
         if (mv.nodes.empty()) continue;
         // Moving one high-order node of a straight tet changes its Jacobian
-        // by d (x) grad(phi_node), whose sign varies over the tet, so its max
-        // AMIPS rises to first order: only try when the worst touched tet is
-        // already curved.
+        // by d (x) grad(phi_node), whose sign varies over the tet, so its true
+        // max AMIPS rises (a dip of the max sampled at quadrature points is
+        // an artefact): only try when the worst touched tet is curved.
         if (!is_corner && straight(worst_of(mv.tets))) continue;
         if (try_move(mv, stats)) ++(is_corner ? stats.vertex_moves : stats.node_moves);
       }
@@ -137,6 +139,27 @@ class CurvedOptimizer {
     std::sort(mv.tets.begin(), mv.tets.end());
     mv.tets.erase(std::unique(mv.tets.begin(), mv.tets.end()), mv.tets.end());
     return mv;
+  }
+
+  // Nodes of tet faces used once (the hull) are frozen too, listed or not.
+  void freeze_hull() {
+    std::vector<std::pair<std::array<int, 3>, std::pair<int, int>>> faces;
+    for (int t = 0; t < m_.num_tets(); ++t)
+      for (int f = 0; f < 4; ++f) {
+        std::array<int, 3> key;
+        for (int k = 0; k < 3; ++k) key[k] = m_.tet(t)[highorder::kTetFaces[f][k]];
+        std::sort(key.begin(), key.end());
+        faces.push_back({key, {t, f}});
+      }
+    std::sort(faces.begin(), faces.end());
+    for (std::size_t i = 0; i < faces.size();) {
+      std::size_t j = i + 1;
+      while (j < faces.size() && faces[j].first == faces[i].first) ++j;
+      if (j == i + 1)
+        for (int node : highorder::tet_face_nodes(m_.order, faces[i].second.second))
+          frozen_[m_.tet(faces[i].second.first)[node]] = 1;
+      i = j;
+    }
   }
 
   int worst_of(const std::vector<int>& tets) const {

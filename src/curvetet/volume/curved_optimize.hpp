@@ -17,8 +17,8 @@
 // AMIPS of the touched tets decreases AND highorder::certify_tet says
 // `positive` for every touched tet (undecided = rejected); otherwise the
 // nodes are restored bit for bit. Nodes of listed boundary triangles (the
-// middle surface, and with an exterior the box) never move, so the boundary
-// and the map onto it are unchanged. Precondition: every tet certified
+// middle surface, and with an exterior the box) and of every tet face used
+// once never move, so the boundary and the map onto it are unchanged. Precondition: every tet certified
 // positive (the assembly's verification); then so is the result.
 // Deterministic: sequential, tets visited worst first (ties by index).
 #include "curvetet/mesh/tet_mesh.hpp"
