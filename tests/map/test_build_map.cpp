@@ -1,0 +1,60 @@
+// The map built from a real pipeline run: it covers every input vertex and
+// every boundary node, each image lies within epsilon of its preimage (the
+// guarantee φ carries), and the boundary side matches the written mesh.
+#include "map_fixture.hpp"
+
+#include "curvetet/highorder/element_map.hpp"
+#include "curvetet/map/transfer.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace curvetet;
+
+class BuildMap : public ::testing::TestWithParam<double> {};
+
+TEST_P(BuildMap, ImagesStayWithinEpsilon) {
+  const auto& r = test::mapped_ellipsoid(GetParam());
+  ASSERT_TRUE(r.result.verification.ok());
+  const auto& m = r.map;
+  ASSERT_EQ(m.vertex_to_boundary.size(), m.input.vertices.size());
+  ASSERT_EQ(m.num_triangles(), r.result.mesh.num_boundary());
+  double worst_forward = 0, worst_backward = 0;
+  for (std::size_t i = 0; i < m.input.vertices.size(); ++i) {
+    const auto& p = m.vertex_to_boundary[i];
+    EXPECT_GE(p.u, -1e-12);
+    EXPECT_GE(p.v, -1e-12);
+    EXPECT_LE(p.u + p.v, 1 + 1e-12);
+    worst_forward = std::max(worst_forward, (map::boundary_point(m, p) - m.input.vertices[i]).norm());
+  }
+  for (std::size_t j = 0; j < m.nodes.size(); ++j) {
+    const auto& p = m.node_to_input[j];
+    EXPECT_GE(std::min({p.u, p.v, 1 - p.u - p.v}), 0.0);
+    worst_backward = std::max(worst_backward, (map::input_point(m, p) - m.nodes[j]).norm());
+  }
+  EXPECT_LT(worst_forward, r.epsilon_abs);
+  EXPECT_LT(worst_backward, r.epsilon_abs);
+  // The map is not the identity: the coarse boundary really moved away.
+  EXPECT_GT(worst_backward, 0.05 * r.epsilon_abs);
+}
+
+// Boundary triangle b of the map is the mesh's boundary triangle b, node for
+// node, and its curved evaluation at a lattice point is that node.
+TEST_P(BuildMap, BoundaryMatchesTheMesh) {
+  const auto& r = test::mapped_ellipsoid(GetParam());
+  const auto& m = r.map;
+  const auto& mesh = r.result.mesh;
+  ASSERT_EQ(m.order, mesh.order);
+  for (int b = 0; b < mesh.num_boundary(); ++b)
+    for (int i = 0; i < mesh.triangle_nodes(); ++i) {
+      const int j = m.triangle(b)[i];
+      EXPECT_EQ(m.node_ids[j], mesh.boundary_triangle(b)[i]);
+      EXPECT_EQ(m.nodes[j], mesh.nodes[m.node_ids[j]]);
+    }
+  std::vector<mesh::Vec3> corners(m.triangle_nodes());
+  for (int i = 0; i < m.triangle_nodes(); ++i) corners[i] = m.nodes[m.triangle(0)[i]];
+  const auto at = highorder::triangle_point(m.order, corners.data(), Eigen::Vector2d(1.0 / 3, 1.0 / 3));
+  EXPECT_LT((map::boundary_point(m, {0, 1.0 / 3, 1.0 / 3}) - at).norm(), 1e-12);
+  EXPECT_EQ(r.stats.nodes, static_cast<int>(m.nodes.size()));
+}
+
+INSTANTIATE_TEST_SUITE_P(Ellipsoid, BuildMap, ::testing::Values(0.02, 0.01));
