@@ -36,7 +36,7 @@ std::function<int()> add_mesh_options(CLI::App& root) {
   root.add_option("--epsilon-abs", o->epsilon_abs, "Distance bound in absolute units (overrides --epsilon)")
       ->check(CLI::PositiveNumber);
   root.add_flag("!--no-coarsen", o->pipeline.coarsen, "Keep the shell as dense as the input (no coarsening)");
-  root.add_option("--vtu", o->vtu, "Also write a VTK Lagrange .vtu (for ParaView)");
+  root.add_option("--vtu", o->vtu, "Also write a VTK Lagrange .vtu (for ParaView) with per-tet min_scaled_jacobian and max_amips");
   root.add_option("--map", o->map_path,
                   "Also write the bijective map input <-> output boundary (binary; JSON if FILE ends in .json; "
                   "docs/map_format.md)");
@@ -61,7 +61,9 @@ std::function<int()> add_mesh_options(CLI::App& root) {
       } else {
         if (!o->output.empty())
           io::write_msh(o->output, result.mesh, o->binary ? io::MshFormat::v41_binary : io::MshFormat::v41_ascii);
-        if (!o->vtu.empty()) io::write_vtu(o->vtu, result.mesh);
+        if (!o->vtu.empty())
+          io::write_vtu(o->vtu, result.mesh,
+                        {{"min_scaled_jacobian", v.min_scaled_jacobian}, {"max_amips", v.max_amips}});
         if (!o->map_path.empty()) {
           StageTimer t(&report, "map");
           map::MapBuildStats stats;
