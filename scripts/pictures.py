@@ -9,6 +9,8 @@ coordinates, see scripts/pictures.sh).
                 its P^2 lattice sub-triangles, element edges in black),
                 coloured by the min scaled Jacobian of the tet under it
   map.png       the input's edges drawn at their images on the output
+  deform.png    (with --deformed DENSE.off COARSE.off) the coarse boundary
+                twisted and the dense input carried along through the map
 
 Usage: pictures.py MAP.json MESH.vtu IMAGES.csv OUTDIR [--elev DEG --azim DEG --up AXIS]
 """
@@ -163,6 +165,15 @@ def draw(ax, scr, tris, colours, lines=(), line_colour="k", line_width=0.3, bins
     ax.axis("off")
 
 
+def read_off(path):
+    tokens = open(path).read().split()
+    assert tokens[0] == "OFF"
+    nv, nf = int(tokens[1]), int(tokens[2])
+    v = np.array(tokens[4:4 + 3 * nv], float).reshape(nv, 3)
+    f = np.array(tokens[4 + 3 * nv:4 + 3 * nv + 4 * nf], int).reshape(nf, 4)[:, 1:]
+    return v, f
+
+
 def visible_input_edges(faces, scr):
     """Edges of front-facing input faces (each once), in the given screen
     coordinates (the input's own, or its image on the output)."""
@@ -184,6 +195,7 @@ def main():
     ap.add_argument("outdir")
     ap.add_argument("--elev", type=float, default=15)
     ap.add_argument("--azim", type=float, default=-30)
+    ap.add_argument("--deformed", nargs=2, metavar=("DENSE_OFF", "COARSE_OFF"))
     ap.add_argument("--up", choices=["x", "y", "z"], default="y", help="the model's up axis")
     args = ap.parse_args()
 
@@ -249,7 +261,23 @@ def main():
     ax.set_title("the map: input edges (red) on the curved output boundary", fontsize=9)
     fig.savefig(f"{args.outdir}/map.png", bbox_inches="tight")
     plt.close(fig)
-    print(f"wrote {args.outdir}/input.png, output.png, map.png")
+    written = ["input.png", "output.png", "map.png"]
+
+    if args.deformed:
+        dense_v, dense_f = read_off(args.deformed[0])
+        coarse_v, coarse_f = read_off(args.deformed[1])
+        fig, axes = plt.subplots(1, 2, figsize=(8, 4.5), dpi=dpi)
+        s_c = view.project(coarse_v)
+        draw(axes[0], s_c, coarse_f, np.tile([0.55, 0.75, 0.95, 1.0], (len(coarse_f), 1)))
+        axes[0].set_title(f"coarse boundary, twisted ({len(tris)} curved triangles)", fontsize=9)
+        s_d = view.project(dense_v)
+        draw(axes[1], s_d, dense_f, np.tile([0.78, 0.80, 0.85, 1.0], (len(dense_f), 1)),
+             visible_input_edges(dense_f, s_d), line_colour=(0.2, 0.2, 0.2), line_width=0.1)
+        axes[1].set_title(f"dense input carried through the map ({len(dense_v)} vertices)", fontsize=9)
+        fig.savefig(f"{args.outdir}/deform.png", bbox_inches="tight")
+        plt.close(fig)
+        written.append("deform.png")
+    print(f"wrote {', '.join(args.outdir + '/' + w for w in written)}")
 
 
 if __name__ == "__main__":

@@ -3,7 +3,8 @@
 # job on the bundled model with --vtu and a JSON --map, carries the boundary
 # node coordinates to the input vertices through the map (`curvetet
 # transfer`: the images φ(v) on the curved boundary), then renders with
-# matplotlib's Agg backend (scripts/pictures.py).
+# matplotlib's Agg backend (scripts/pictures.py); the animation example's
+# twist (`curvetet deform`) too.
 # Usage: scripts/pictures.sh [MODEL.off] [EPSILON]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,4 +24,6 @@ with open(sys.argv[2], "w") as f:
         f.write("%.17g,%.17g,%.17g\n" % tuple(p))
 PY
 ./build/app/curvetet -q transfer "$work/map.json" "$work/nodes.csv" -o "$work/images.csv" --to input
-/usr/bin/python3 scripts/pictures.py "$work/map.json" "$work/mesh.vtu" "$work/images.csv" docs/img
+./build/app/curvetet -q deform "$work/map.json" -o "$work/twisted.off" --coarse-output "$work/twisted_coarse.off" --twist 60
+/usr/bin/python3 scripts/pictures.py "$work/map.json" "$work/mesh.vtu" "$work/images.csv" docs/img \
+  --deformed "$work/twisted.off" "$work/twisted_coarse.off"
