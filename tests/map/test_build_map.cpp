@@ -58,3 +58,22 @@ TEST_P(BuildMap, BoundaryMatchesTheMesh) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Ellipsoid, BuildMap, ::testing::Values(0.02, 0.01));
+
+// A shell with a singular (pinched) vertex: its slab tets with a zero pillar
+// are left out, yet every shell face still has its boundary triangle and the
+// map covers every input vertex within epsilon.
+TEST(BuildMapPinched, FoldedStar) {
+  const auto input = shell::test::folded_star();
+  pipeline::PipelineOptions o;
+  o.epsilon = 0.02;
+  Report report;
+  const auto r = pipeline::run_pipeline(input, o, report);
+  ASSERT_GT(report["shell"]["singular_vertices"].get<int>(), 0);
+  ASSERT_TRUE(r.verification.ok()) << r.verification.text();
+  const auto m = map::build_boundary_map(r.shell, r.mesh);
+  const double eps = 0.02 * mesh::bbox_diagonal(input.vertices);
+  for (std::size_t i = 0; i < m.input.vertices.size(); ++i)
+    EXPECT_LT((map::boundary_point(m, m.vertex_to_boundary[i]) - m.input.vertices[i]).norm(), eps);
+  for (std::size_t j = 0; j < m.nodes.size(); ++j)
+    EXPECT_LT((map::input_point(m, m.node_to_input[j]) - m.nodes[j]).norm(), eps);
+}
