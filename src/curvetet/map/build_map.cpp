@@ -5,6 +5,7 @@
 #include "curvetet/shell/prism_geometry.hpp"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -119,13 +120,17 @@ mesh::BoundaryMap build_boundary_map(const shell::Shell& s, const mesh::TetMesh&
     out.vertex_to_boundary[i] = {b, t[1], t[2]};
   }
 
-  // φ⁻¹: boundary nodes.
+  // φ⁻¹: boundary nodes, independent of each other (parallel; the result
+  // does not depend on the thread count).
   MapBuildStats stats;
   stats.nodes = static_cast<int>(out.nodes.size());
   stats.triangles = m.num_boundary();
-  stats.min_hit_depth = std::numeric_limits<double>::infinity();
+  std::vector<shell::PrismGeom> geom(s.num_prisms());
+  for (int f = 0; f < s.num_prisms(); ++f) geom[f] = shell::prism_geom(s, f);
   out.node_to_input.resize(out.nodes.size());
-  for (std::size_t j = 0; j < out.nodes.size(); ++j) {
+  std::vector<double> depth_of(out.nodes.size(), std::numeric_limits<double>::infinity());
+  std::vector<char> fallback(out.nodes.size(), 0);
+  tbb::parallel_for(std::size_t(0), out.nodes.size(), [&](std::size_t j) {
     bool found = false;
     for (std::size_t k = 0; k < uses[j].size() && !found; ++k) {
       const auto [b, i] = uses[j][k];
@@ -133,7 +138,6 @@ mesh::BoundaryMap build_boundary_map(const shell::Shell& s, const mesh::TetMesh&
       const double tu = double(q[0]) / P, tv = double(q[1]) / P;
       const auto l = triangle_to_face({1 - tu - tv, tu, tv}, placement[b].rotation);
       const int f = placement[b].face;
-      const auto g = shell::prism_geom(s, f);
       double best = -std::numeric_limits<double>::infinity();
       for (int t : s.tracked[f]) {
         const auto& tri = s.input.faces[t];
@@ -141,7 +145,7 @@ mesh::BoundaryMap build_boundary_map(const shell::Shell& s, const mesh::TetMesh&
         const auto& B = s.input.vertices[tri[1]];
         const auto& C = s.input.vertices[tri[2]];
         double depth = 0;
-        const auto hit = shell::fiber_hit(g, l[1], l[2], A, B, C, &depth);
+        const auto hit = shell::fiber_hit(geom[f], l[1], l[2], A, B, C, &depth);
         if (hit && depth > best) {
           best = depth;
           out.node_to_input[j] = barycentric_on(t, *hit, A, B, C);
@@ -149,13 +153,17 @@ mesh::BoundaryMap build_boundary_map(const shell::Shell& s, const mesh::TetMesh&
         }
       }
       if (found) {
-        stats.min_hit_depth = std::min(stats.min_hit_depth, best);
-        stats.node_fallbacks += k > 0;
+        depth_of[j] = best;
+        fallback[j] = k > 0;
       }
     }
-    if (!found)
+  });
+  for (std::size_t j = 0; j < out.nodes.size(); ++j) {
+    if (out.node_to_input[j].face < 0)
       throw Error(ExitCode::internal, fmt::format("map: the fiber of boundary node {} (mesh node {}) meets no tracked input face", j, out.node_ids[j]));
+    stats.node_fallbacks += fallback[j];
   }
+  stats.min_hit_depth = depth_of.empty() ? 0 : *std::min_element(depth_of.begin(), depth_of.end());
   if (stats_out) *stats_out = stats;
   return out;
 }
