@@ -12,9 +12,9 @@
 
 namespace curvetet::test {
 
-// Octahedral sphere (4 subdivisions, 2048 faces) scaled to radii 1, 0.7, 0.5.
+// Octahedral sphere (3 subdivisions, 512 faces) scaled to radii 1, 0.7, 0.5.
 inline mesh::SurfaceMesh ellipsoid() {
-  auto m = shell::test::sphere(4);
+  auto m = shell::test::sphere(3);
   for (auto& p : m.vertices) p = mesh::Vec3(p.x(), 0.7 * p.y(), 0.5 * p.z());
   return m;
 }

@@ -70,7 +70,7 @@ TEST(Transfer, LinearVectorFieldRoundTripWithinTheMapDistance) {
 // displacement times the gradient (times the Lebesgue constant, as above)
 // plus the coarse interpolation error, which shrinks faster: bound
 // 3 |grad f| epsilon. Smaller epsilon, smaller error. (Measured: about
-// 0.05-0.07 |grad f| epsilon; part of it is a floor set by the input's own
+// 0.11-0.16 |grad f| epsilon; part of it is a floor set by the input's own
 // faceting, since the displacement's first-order part cancels on the way
 // back, so the error does not halve exactly with epsilon.)
 TEST(Transfer, SmoothScalarRoundTripIsOrderEpsilon) {
