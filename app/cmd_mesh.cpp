@@ -6,8 +6,10 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
+#include "curvetet/io/map_file.hpp"
 #include "curvetet/io/msh.hpp"
 #include "curvetet/io/vtu.hpp"
+#include "curvetet/map/build_map.hpp"
 #include "curvetet/pipeline/pipeline.hpp"
 
 #include <map>
@@ -18,7 +20,7 @@ namespace curvetet::app {
 std::function<int()> add_mesh_options(CLI::App& root) {
   struct Options {
     InputOptions input;
-    std::string output, vtu, report_path;
+    std::string output, vtu, map_path, report_path;
     bool binary = false;
     double epsilon_abs = 0;
     pipeline::PipelineOptions pipeline;
@@ -51,7 +53,10 @@ std::function<int()> add_mesh_options(CLI::App& root) {
   root.add_flag("!--no-coarsen", o->pipeline.coarsen, "Keep the shell as dense as the input (no coarsening)");
   root.add_flag("!--flat-middle", o->pipeline.curved_middle,
                 "Keep the middle surface flat (straight elements; coarser meshes come from the curved default)");
-  root.add_option("--vtu", o->vtu, "Also write a VTK Lagrange .vtu (for ParaView)");
+  root.add_option("--vtu", o->vtu, "Also write a VTK Lagrange .vtu (for ParaView) with per-tet min_scaled_jacobian and max_amips");
+  root.add_option("--map", o->map_path,
+                  "Also write the bijective map input <-> output boundary (binary; JSON if FILE ends in .json; "
+                  "docs/map_format.md)");
   root.add_flag("--binary", o->binary, "Write the .msh in binary");
   root.add_flag("--debug-invariants", o->pipeline.shell.debug_invariants,
                 "Re-check every shell invariant globally after each stage (slow)");
@@ -61,7 +66,7 @@ std::function<int()> add_mesh_options(CLI::App& root) {
     auto in = read_checked_input(o->input, report);
     logger().info("{}: {}", o->input.mesh_path, in.preconditions.text());
     int code = 0;
-    if (!o->output.empty() || !o->vtu.empty()) {
+    if (!o->output.empty() || !o->vtu.empty() || !o->map_path.empty()) {
       if (o->epsilon_abs > 0) o->pipeline.epsilon_abs = o->epsilon_abs;
       auto result = pipeline::run_pipeline(in.mesh, o->pipeline, report);
       const auto& v = result.verification;
@@ -73,7 +78,20 @@ std::function<int()> add_mesh_options(CLI::App& root) {
       } else {
         if (!o->output.empty())
           io::write_msh(o->output, result.mesh, o->binary ? io::MshFormat::v41_binary : io::MshFormat::v41_ascii);
-        if (!o->vtu.empty()) io::write_vtu(o->vtu, result.mesh);
+        if (!o->vtu.empty())
+          io::write_vtu(o->vtu, result.mesh,
+                        {{"min_scaled_jacobian", v.min_scaled_jacobian}, {"max_amips", v.max_amips}});
+        if (!o->map_path.empty()) {
+          StageTimer t(&report, "map");
+          map::MapBuildStats stats;
+          const auto bmap = map::build_boundary_map(result.shell, result.mesh, &stats);
+          io::write_map(o->map_path, bmap);
+          report["map"] = {{"path", o->map_path},       {"boundary_nodes", stats.nodes},
+                           {"triangles", stats.triangles}, {"node_fallbacks", stats.node_fallbacks},
+                           {"min_hit_depth", stats.min_hit_depth}};
+          logger().info("map written to {} ({} input vertices, {} boundary nodes)", o->map_path,
+                        bmap.input.vertices.size(), bmap.nodes.size());
+        }
         logger().info("wrote {}{}", o->output, o->vtu.empty() ? "" : " and " + o->vtu);
       }
     }

@@ -17,6 +17,8 @@ Command add_check_command(CLI::App& root);
 Command add_shell_command(CLI::App& root);
 Command add_poisson_command(CLI::App& root);
 Command add_tetrahedralize_command(CLI::App& root);
+Command add_transfer_command(CLI::App& root);
+Command add_deform_command(CLI::App& root);
 // The main job: options live on the root app itself (`curvetet MESH ...`).
 std::function<int()> add_mesh_options(CLI::App& root);
 

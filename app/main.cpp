@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
 
   std::vector<app::Command> commands = {app::add_check_input_command(root), app::add_check_command(root),
                                         app::add_shell_command(root), app::add_tetrahedralize_command(root),
-                                        app::add_poisson_command(root)};
+                                        app::add_poisson_command(root),
+                                        app::add_transfer_command(root), app::add_deform_command(root)};
   auto run_main_job = app::add_mesh_options(root);
   // The main job's MESH is required only when no subcommand is given.
   root.get_option("MESH")->required(false);

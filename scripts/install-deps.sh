@@ -1,18 +1,20 @@
 #!/usr/bin/env bash
 # Installs curvetet's Debian 12 packages. Idempotent and fast when they are
-# already there (no apt-get call at all). Usage: install-deps.sh [build|test|bench]
+# already there (no apt-get call at all). Usage: install-deps.sh [build|test|bench|docs]
 set -euo pipefail
 build_pkgs=(cmake ninja-build g++ libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libtbb-dev
             libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev)
 test_pkgs=(gmsh python3-gmsh python3-meshio python3-numpy python3-dolfinx)
 bench_pkgs=(tetgen time)
+docs_pkgs=(python3-numpy python3-matplotlib)  # scripts/pictures.sh
 
 pkgs=("${build_pkgs[@]}")
 case "${1:-build}" in
   build) ;;
   test) pkgs+=("${test_pkgs[@]}") ;;
   bench) pkgs+=("${test_pkgs[@]}" "${bench_pkgs[@]}") ;;
-  *) echo "usage: $0 [build|test|bench]" >&2; exit 2 ;;
+  docs) pkgs+=("${docs_pkgs[@]}") ;;
+  *) echo "usage: $0 [build|test|bench|docs]" >&2; exit 2 ;;
 esac
 
 missing=()
