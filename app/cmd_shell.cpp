@@ -65,7 +65,8 @@ nlohmann::json coarsen_json(const shell::CoarsenStats& c) {
                       {"rejected", total},
                       {"rejected_by_reason", rejected},
                       {"batches", p.batches},
-                      {"seconds", p.seconds}});
+                      {"seconds", p.seconds},
+                      {"check_seconds", p.check_seconds}});
   }
   return {{"faces_before", c.faces_before},
           {"faces_after", c.faces_after},

@@ -3,8 +3,10 @@
 // Target: linear in the input size; the bunny under 60 s on 2 cores.
 // The shell is built once per benchmark outside the timed loop.
 // Counters: faces before/after, reduction, operations tried and accepted per
-// second, and a checksum of the coarse shell that must not depend on the
-// thread count. Run: build/bench/bench_coarsen [--benchmark_filter=...]
+// second, parallel_share (share of the pass time in the parallel check
+// phase; the rest is serial), tried_per_batch, and a checksum of the coarse
+// shell that must not depend on the thread count.
+// Run: build/bench/bench_coarsen [--benchmark_filter=...]
 #include "curvetet/core/threads.hpp"
 #include "curvetet/io/read_surface.hpp"
 #include "curvetet/shell/build.hpp"
@@ -45,10 +47,19 @@ void BM_Coarsen(benchmark::State& state, const std::string& name) {
     sum = checksum(s);
   }
   long long tried = 0, accepted = 0;
+  double pass_seconds = 0, check_seconds = 0, batches = 0;
   for (const auto& p : stats.passes) {
     tried += p.tried;
     accepted += p.accepted;
+    pass_seconds += p.seconds;
+    check_seconds += p.check_seconds;
+    batches += static_cast<double>(p.batches);
   }
+  // Share of the pass time spent in the parallel check phase (the rest:
+  // batch assembly, commits, renewals, compaction: serial), and the mean
+  // number of candidates checked per parallel batch.
+  state.counters["parallel_share"] = pass_seconds > 0 ? check_seconds / pass_seconds : 0;
+  state.counters["tried_per_batch"] = batches > 0 ? double(tried) / batches : 0;
   state.counters["faces_before"] = stats.faces_before;
   state.counters["faces_after"] = stats.faces_after;
   state.counters["reduction"] = double(stats.faces_before) / std::max(1, stats.faces_after);

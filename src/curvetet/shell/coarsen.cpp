@@ -230,6 +230,7 @@ PassStats run_pass(ShellEditor& e, const Operation& op, const StarContext& ctx, 
     ++st.batches;
     // 2. Check in parallel (the shell is read-only here).
     std::vector<SlotResult> results(batch.size());
+    const auto check_start = clock_type::now();
     tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) {
       auto cands = op.candidates(e, batch[i].a, batch[i].b);
       auto& r = results[i];
@@ -248,6 +249,7 @@ PassStats run_pass(ShellEditor& e, const Operation& op, const StarContext& ctx, 
         ++r.rejected[static_cast<int>(*why)];
       }
     });
+    st.check_seconds += since(check_start);
     // 3. Commit in batch order.
     for (std::size_t i = 0; i < batch.size(); ++i) {
       auto& r = results[i];

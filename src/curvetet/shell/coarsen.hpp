@@ -50,6 +50,7 @@ struct PassStats {
   std::array<long long, kRejectionCount> rejected{};
   int faces_before = 0, faces_after = 0;
   double seconds = 0;
+  double check_seconds = 0; // of which in the parallel check phase (the rest is serial)
 };
 
 struct CoarsenStats {
