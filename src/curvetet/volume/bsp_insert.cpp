@@ -616,16 +616,25 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
         bool split = false;
         for (int t : tet_tris[T]) {
           const Plane& pl = tri_plane[t];
-          // Does the face lie in the triangle's plane? (exact: every corner
-          // of the face on it)
+          // Is the face's supporting plane the triangle's? (exact, on the
+          // triangle's double corners)
           const Face& face = cx.faces[f];
           bool in_plane = true;
-          if (face.plane != &pl)
-            for (int i : face.loop)
-              if (cx.side(pl, i) != 0) {
-                in_plane = false;
-                break;
-              }
+          if (face.plane == &pl) {
+          } else if (face.plane) {
+            for (int k = 0; k < 3 && in_plane; ++k) {
+              const int x = triangles[t][k];
+              const auto& id = face.plane->ids;
+              in_plane = x == id[0] || x == id[1] || x == id[2] || side_q(*face.plane, shape[t].corner[k]) == 0;
+            }
+          } else {
+            const auto& o = face.origin;
+            for (int k = 0; k < 3 && in_plane; ++k) {
+              const int x = triangles[t][k];
+              in_plane = x == o[0] || x == o[1] || x == o[2] ||
+                         geometry::orient3d(P[o[0]], P[o[1]], P[o[2]], P[x]) == 0;
+            }
+          }
           if (!in_plane) continue;
           for (const auto& ep : edge_planes[t]) {
             const int g = cx.split_face_by(f, ep.plane);

@@ -55,6 +55,28 @@ class Optimizer {
   // segment or in the same flat face, so the boundary keeps its shape).
   // Checks: every new tet positive (exact), the link condition including the
   // boundary (a virtual vertex joined to the boundary faces).
+  // Largest energy of the tets collapse_on_surface(v, u) would create, or
+  // +inf when that collapse is not allowed.
+  double surface_collapse_cost(int v, int u) const {
+    double worst = 0;
+    bool shares = false;
+    for (int t : vt_[v]) {
+      const Tet& q = m_.tets[t];
+      if (std::find(q.begin(), q.end(), u) != q.end()) {
+        shares = true;
+        continue;
+      }
+      Tet n = q;
+      for (int& x : n)
+        if (x == v) x = u;
+      if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return std::numeric_limits<double>::infinity();
+      worst = std::max(worst, energy(n));
+    }
+    if (!shares || !link_condition(u, v) || !boundary_link_condition(u, v))
+      return std::numeric_limits<double>::infinity();
+    return worst;
+  }
+
   bool collapse_on_surface(int v, int u) {
     std::vector<int> removed;
     for (int t : vt_[v]) {
@@ -579,14 +601,18 @@ std::size_t surface_steiner_pass(Optimizer& o) {
     left = 0;
     for (const auto& st : m.on_surface) {
       if (!o.pinned(st.vertex)) continue;
-      auto targets = st.targets;
-      const Vec3& p = m.v.d[st.vertex];
-      std::sort(targets.begin(), targets.end(), [&](int a, int b) {
-        return (m.v.d[a] - p).squaredNorm() < (m.v.d[b] - p).squaredNorm();
-      });
-      bool done = false;
-      for (int u : targets)
-        if (!o.star(u).empty() && (done = o.collapse_on_surface(st.vertex, u))) break;
+      // the allowed target giving the best worst tet
+      int best = -1;
+      double best_cost = std::numeric_limits<double>::infinity();
+      for (int u : st.targets) {
+        if (o.star(u).empty()) continue;
+        const double c = o.surface_collapse_cost(st.vertex, u);
+        if (c < best_cost) {
+          best_cost = c;
+          best = u;
+        }
+      }
+      const bool done = best >= 0 && o.collapse_on_surface(st.vertex, best);
       if (done) {
         progress = true;
       } else {
