@@ -1,21 +1,23 @@
 #include "curvetet/volume/background.hpp"
 
 #include "curvetet/core/error.hpp"
-#include "curvetet/geometry/box_pairs.hpp"
 #include "curvetet/geometry/predicates.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <CGAL/intersections.h>
 
 #include <algorithm>
+#include <unordered_map>
 
 namespace curvetet::volume {
 namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
-using Tds = CGAL::Triangulation_data_structure_3<Vb>;
+using Cb = CGAL::Triangulation_cell_base_with_info_3<int, K>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, CGAL::Delaunay_triangulation_cell_base_3<K, Cb>>;
 using Delaunay = CGAL::Delaunay_triangulation_3<K, Tds>;
 K::Point_3 cg(const mesh::Vec3& p) { return {p.x(), p.y(), p.z()}; }
 // Conservative: false only when a plane of the tet's faces or the
@@ -43,6 +45,25 @@ bool may_meet(const std::vector<mesh::Vec3>& p, const std::array<int, 4>& t, con
   return !(pos == 4 || neg == 4);
 }
 
+// neighbours[t][k] = tet across the face opposite corner k (-1: none).
+std::vector<std::array<int, 4>> face_neighbours(const std::vector<std::array<int, 4>>& tets) {
+  std::unordered_map<std::uint64_t, std::pair<int, int>> open; // sorted face -> (tet, corner)
+  std::vector<std::array<int, 4>> nb(tets.size(), {-1, -1, -1, -1});
+  for (int t = 0; t < static_cast<int>(tets.size()); ++t)
+    for (int k = 0; k < 4; ++k) {
+      std::array<int, 3> f{tets[t][(k + 1) % 4], tets[t][(k + 2) % 4], tets[t][(k + 3) % 4]};
+      std::sort(f.begin(), f.end());
+      const std::uint64_t key = (static_cast<std::uint64_t>(f[0]) << 42) | (static_cast<std::uint64_t>(f[1]) << 21) |
+                                static_cast<std::uint64_t>(f[2]);
+      auto [it, fresh] = open.try_emplace(key, t, k);
+      if (!fresh) {
+        nb[t][k] = it->second.first;
+        nb[it->second.first][it->second.second] = t;
+      }
+    }
+  return nb;
+}
+
 } // namespace
 
 BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points) {
@@ -56,30 +77,59 @@ BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points) {
   BackgroundMesh bg;
   bg.points = points;
   bg.tets.reserve(dt.number_of_finite_cells());
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c)
+  int id = 0;
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    c->info() = id++;
     bg.tets.push_back({c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()});
+  }
+  bg.neighbours.reserve(bg.tets.size());
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    std::array<int, 4> nb;
+    for (int k = 0; k < 4; ++k) nb[k] = dt.is_infinite(c->neighbor(k)) ? -1 : c->neighbor(k)->info();
+    bg.neighbours.push_back(nb);
+  }
   return bg;
 }
 
 std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles) {
   const auto& p = bg.points;
-  std::vector<geometry::Box3> tet_boxes, tri_boxes;
-  tet_boxes.reserve(bg.tets.size());
-  for (const auto& t : bg.tets) {
-    auto b = geometry::bounding_box(p[t[0]], p[t[1]], p[t[2]]);
-    b.min = b.min.cwiseMin(p[t[3]]);
-    b.max = b.max.cwiseMax(p[t[3]]);
-    tet_boxes.push_back(b);
+  const int nt = static_cast<int>(bg.tets.size());
+  const auto neighbours = bg.neighbours.empty() ? face_neighbours(bg.tets) : bg.neighbours;
+  // Tets around each point (CSR).
+  std::vector<int> start(p.size() + 1, 0), star(4 * bg.tets.size());
+  for (const auto& t : bg.tets)
+    for (int x : t) ++start[x + 1];
+  for (std::size_t i = 0; i < p.size(); ++i) start[i + 1] += start[i];
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int t = 0; t < nt; ++t)
+      for (int x : bg.tets[t]) star[fill[x]++] = t;
   }
-  tri_boxes.reserve(triangles.size());
-  for (const auto& t : triangles) tri_boxes.push_back(geometry::bounding_box(p[t[0]], p[t[1]], p[t[2]]));
-  std::vector<std::vector<int>> out(bg.tets.size());
-  for (auto [i, j] : geometry::overlapping_pairs(tet_boxes, tri_boxes)) {
-    const auto& t = bg.tets[i];
+  // Walk per triangle; pairs (tet, triangle) come out in triangle order.
+  std::vector<int> seen(nt, -1), stack;
+  std::vector<std::pair<int, int>> pairs;
+  for (int j = 0; j < static_cast<int>(triangles.size()); ++j) {
     const auto& f = triangles[j];
-    if (may_meet(p, t, f)) out[i].push_back(j);
+    stack.clear();
+    for (int x : f)
+      for (int k = start[x]; k < start[x + 1]; ++k)
+        if (seen[star[k]] != j) {
+          seen[star[k]] = j; // contains a corner: meets the triangle
+          stack.push_back(star[k]);
+        }
+    while (!stack.empty()) {
+      const int t = stack.back();
+      stack.pop_back();
+      pairs.emplace_back(t, j);
+      for (int o : neighbours[t])
+        if (o >= 0 && seen[o] != j) {
+          seen[o] = j;
+          if (may_meet(p, bg.tets[o], f)) stack.push_back(o);
+        }
+    }
   }
-  for (auto& l : out) std::sort(l.begin(), l.end());
+  std::vector<std::vector<int>> out(bg.tets.size());
+  for (auto [t, j] : pairs) out[t].push_back(j);
   return out;
 }
 

@@ -12,6 +12,9 @@ namespace curvetet::volume {
 struct BackgroundMesh {
   std::vector<mesh::Vec3> points;            // as given
   std::vector<std::array<int, 4>> tets;      // positive (orient3d > 0)
+  // neighbours[t][k]: the tet across the face opposite corner k, -1 on the
+  // hull (filled by delaunay(); computed on demand when empty).
+  std::vector<std::array<int, 4>> neighbours;
 };
 
 // Delaunay tetrahedralization of `points` (CGAL, exact predicates). Points
@@ -22,7 +25,10 @@ BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points);
 // For every tet, the sorted ids of the triangles (corners index bg.points)
 // that may meet the closed tet: every triangle that does is listed; a few
 // that do not may be (not separated by a face plane of the tet or by the
-// triangle's plane; exact).
+// triangle's plane; exact). Found by walking from the stars of each
+// triangle's corners through face-adjacent tets that may meet it (the tets
+// meeting a closed triangle are face-connected), so the cost follows the
+// number of listed pairs, not of overlapping bounding boxes.
 std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles);
 
 } // namespace curvetet::volume

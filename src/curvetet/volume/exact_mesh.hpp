@@ -46,11 +46,23 @@ struct Vertices {
 
 // Tets are positive. Vertices [0, num_frozen) are the input surface; they
 // never move and are never removed; frozen[v] marks them plus the box.
+//
+// on_surface: Steiner vertices the insertion put on the input surface itself.
+// That happens only where the offset coincides with the surface: on an edge
+// whose two ends are pinched (singular), or in a face whose three corners
+// are. Each comes with the vertices it may be collapsed onto without moving
+// the boundary (the other vertices on the same segment, or in the same flat
+// face); the optimizer must remove them all.
+struct SurfaceSteiner {
+  int vertex;
+  std::vector<int> targets;
+};
 struct ExactTetMesh {
   Vertices v;
   std::vector<std::array<int, 4>> tets;
   std::vector<int> tags;
   std::vector<char> frozen;
+  std::vector<SurfaceSteiner> on_surface;
 };
 
 } // namespace curvetet::volume::exact

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <set>
 #include <unordered_map>
 
@@ -147,6 +148,44 @@ mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& opt
       std::array<int, 4> o;
       for (int i = 0; i < 4; ++i) o[i] = out_id(t[i]);
       add_tet(o);
+    }
+  }
+  // Steiner points on pinched surface edges and faces (the offset coincides
+  // with the surface there): they must be collapsed away (optimize.cpp).
+  {
+    std::map<int, std::vector<int>> targets_of; // ordered: deterministic
+    auto pinched_face = [&](int f) { return s.pinched(faces[f][0]) && s.pinched(faces[f][1]) && s.pinched(faces[f][2]); };
+    // A vertex on a pinched edge may only slide along it (the faces on both
+    // sides stay flat); a vertex inside a pinched face may go to any vertex
+    // of that face.
+    for (int f = 0; f < s.surface.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int a = faces[f][k], b = faces[f][(k + 1) % 3];
+        if (!s.pinched(a) || !s.pinched(b)) continue;
+        const auto& c = chain(f, a, b); // complex ids a, b are the pinched vertices themselves
+        if (c.size() == 2) continue;
+        std::vector<int> ids;
+        for (int x : c) ids.push_back(id(x));
+        for (int x : ids)
+          if (x >= n) targets_of[x].insert(targets_of[x].end(), ids.begin(), ids.end());
+      }
+    std::set<int> on_edge;
+    for (const auto& kv : targets_of) on_edge.insert(kv.first);
+    for (int f = 0; f < s.surface.num_faces(); ++f) {
+      if (!pinched_face(f)) continue;
+      std::vector<int> all;
+      for (const auto& tri : ins.refined[f])
+        for (int x : tri) all.push_back(id(x));
+      std::sort(all.begin(), all.end());
+      all.erase(std::unique(all.begin(), all.end()), all.end());
+      for (int x : all)
+        if (x >= n && !on_edge.count(x)) targets_of[x].insert(targets_of[x].end(), all.begin(), all.end());
+    }
+    for (auto& [x, t] : targets_of) {
+      std::sort(t.begin(), t.end());
+      t.erase(std::unique(t.begin(), t.end()), t.end());
+      t.erase(std::remove(t.begin(), t.end(), x), t.end());
+      m.on_surface.push_back({x, std::move(t)});
     }
   }
   stats.seconds_layer = seconds_since(t0);

@@ -8,8 +8,8 @@
 //    the pillar is pinched (singular vertex). The offset surface (same faces,
 //    offset positions) does not self-intersect and, apart from pinched
 //    vertices, does not touch the surface.
-//  - every layer prism (face f, its offset) cut into 3 tets by the global
-//    index rule below has positive tets, except tets that contain a pinched
+//  - every layer prism (face f, its offset) cut into 3 tets by the shell's
+//    split below has positive tets, except tets that contain a pinched
 //    pillar (they are degenerate and dropped).
 // side = inward: the offset lies behind the faces (filling the interior);
 // side = outward: in front of them (filling the exterior).
@@ -38,10 +38,11 @@ using LayerTet = std::array<int, 4>;
 inline int offset_id(const LayeredSurface& s, int v) { return s.pinched(v) ? v : s.surface.num_vertices() + v; }
 
 // The 3 tets of each prism, positively oriented, degenerate ones dropped.
-// Rule (shared with the shell's slab split, DESIGN.md §3.3): sort the face's
-// vertices by global index a < b < c; tets (a,b,c,c'), (a,b,b',c'),
-// (a,a',b',c'), so the quad on edge (x<y) is cut by the diagonal x–y'.
-// Neighbouring prisms therefore agree on their shared quads.
+// The split is the shell's slab split, shell::canonical_split (one rule for
+// the whole code base), with the slab's lower corners on the side the face's
+// normal points away from: the offset for inward, the surface for outward.
+// It depends on global vertex ids only, so neighbouring prisms agree on their
+// shared quads.
 // Throws Error(internal) naming the face if a tet is not positive (the offset
 // breaks the contract).
 // face_of (optional) receives the face of each tet.

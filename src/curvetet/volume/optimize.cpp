@@ -43,6 +43,65 @@ class Optimizer {
     for (int t = 0; t < static_cast<int>(m_.tets.size()); ++t)
       for (int x : m_.tets[t]) vt_[x].push_back(t);
     alive_.assign(m_.tets.size(), 1);
+    pinned_.assign(m_.v.size(), 0);
+    for (const auto& st : m_.on_surface) pinned_[st.vertex] = 1;
+  }
+
+  // A Steiner vertex on the surface: never rounded, smoothed or relocated
+  // (that would move the boundary); only collapse_on_surface removes it.
+  bool pinned(int v) const { return pinned_[v] != 0; }
+
+  // Collapses the surface Steiner vertex v onto u (a vertex on the same
+  // segment or in the same flat face, so the boundary keeps its shape).
+  // Checks: every new tet positive (exact), the link condition including the
+  // boundary (a virtual vertex joined to the boundary faces).
+  // Largest energy of the tets collapse_on_surface(v, u) would create, or
+  // +inf when that collapse is not allowed.
+  double surface_collapse_cost(int v, int u) const {
+    double worst = 0;
+    bool shares = false;
+    for (int t : vt_[v]) {
+      const Tet& q = m_.tets[t];
+      if (std::find(q.begin(), q.end(), u) != q.end()) {
+        shares = true;
+        continue;
+      }
+      Tet n = q;
+      for (int& x : n)
+        if (x == v) x = u;
+      if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return std::numeric_limits<double>::infinity();
+      worst = std::max(worst, energy(n));
+    }
+    if (!shares || !link_condition(u, v) || !boundary_link_condition(u, v))
+      return std::numeric_limits<double>::infinity();
+    return worst;
+  }
+
+  bool collapse_on_surface(int v, int u) {
+    std::vector<int> removed;
+    for (int t : vt_[v]) {
+      const Tet& q = m_.tets[t];
+      if (std::find(q.begin(), q.end(), u) != q.end()) {
+        removed.push_back(t);
+        continue;
+      }
+      Tet n = q;
+      for (int& x : n)
+        if (x == v) x = u;
+      if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
+    }
+    if (removed.empty()) return false;
+    if (!link_condition(u, v) || !boundary_link_condition(u, v)) return false;
+    for (int t : removed) kill(t);
+    for (int t : std::vector<int>(vt_[v])) {
+      for (int& x : m_.tets[t])
+        if (x == v) x = u;
+      vt_[u].push_back(t);
+    }
+    vt_[v].clear();
+    pinned_[v] = 0;
+    ++stats_.collapses;
+    return true;
   }
 
   ExactTetMesh& mesh() { return m_; }
@@ -63,7 +122,7 @@ class Optimizer {
   std::size_t round_pass() {
     std::size_t left = 0;
     for (int v = 0; v < m_.v.size(); ++v) {
-      if (m_.v.exact[v] || vt_[v].empty()) continue;
+      if (m_.v.exact[v] || vt_[v].empty() || pinned(v)) continue;
       const Vec3 p = nearest_double(m_.v.q[v]);
       if (star_positive_at(v, p)) {
         m_.v.set(v, p);
@@ -89,7 +148,7 @@ class Optimizer {
   // --- smoothing: descend the star's sum of squared AMIPS energies without
   // raising its maximum; every tet stays positive (exact). ---
   bool smooth(int v) {
-    if (m_.frozen[v] || vt_[v].empty()) return false;
+    if (m_.frozen[v] || pinned(v) || vt_[v].empty()) return false;
     const Vec3 p0 = m_.v.d[v];
     double e0 = 0, max0 = 0, len = 0;
     for (int t : vt_[v]) {
@@ -133,10 +192,69 @@ class Optimizer {
     return false;
   }
 
+  // --- worst-tet smoothing: lowers the maximum energy of v's star by a
+  // compass search (the gradient of the worst tet first, then the axes);
+  // every accepted position keeps the star positive (exact). ---
+  bool smooth_max(int v) {
+    if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || vt_[v].empty()) return false;
+    Vec3 p = m_.v.d[v];
+    double len = 0;
+    for (int t : vt_[v])
+      for (int x : m_.tets[t]) len += (m_.v.d[x] - p).norm();
+    len /= 3.0 * static_cast<double>(vt_[v].size());
+    if (!(len > 0)) return false;
+    auto max_at = [&](const Vec3& q, int* worst) {
+      double m = 0;
+      for (int t : vt_[v]) {
+        const double e = energy_at(m_.tets[t], v, q);
+        if (e > m) {
+          m = e;
+          if (worst) *worst = t;
+        }
+      }
+      return m;
+    };
+    int worst = -1;
+    double best = max_at(p, &worst);
+    bool moved = false;
+    for (double step = 0.2 * len; step > 1e-3 * len;) {
+      // descent direction of the worst tet's energy (central differences)
+      const double h = 1e-6 * len;
+      Vec3 g;
+      for (int k = 0; k < 3; ++k) {
+        Vec3 a = p, b = p;
+        a[k] += h;
+        b[k] -= h;
+        g[k] = energy_at(m_.tets[worst], v, a) - energy_at(m_.tets[worst], v, b);
+      }
+      std::array<Vec3, 7> dirs = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(),
+                                  Vec3::UnitZ(), -Vec3::UnitZ(), Vec3::Zero()};
+      if (g.allFinite() && g.norm() > 0) dirs[6] = -g.normalized();
+      bool improved = false;
+      for (int i = 6; i >= 0 && !improved; --i) {
+        if (dirs[i].isZero()) continue;
+        const Vec3 q = p + step * dirs[i];
+        int w = -1;
+        const double e = max_at(q, &w);
+        if (!(e < best) || !star_positive_at(v, q)) continue;
+        p = q;
+        best = e;
+        worst = w;
+        improved = moved = true;
+      }
+      if (!improved) step *= 0.5;
+    }
+    if (moved) {
+      m_.v.set(v, p);
+      ++stats_.smooths;
+    }
+    return moved;
+  }
+
   // Moves an unrounded vertex to some double position keeping its star
   // positive (towards the star's centroid).
   bool relocate(int v) {
-    if (m_.frozen[v] || m_.v.exact[v]) return false;
+    if (m_.frozen[v] || pinned(v) || m_.v.exact[v]) return false;
     Vec3 c = Vec3::Zero();
     int n = 0;
     for (int t : vt_[v])
@@ -159,7 +277,7 @@ class Optimizer {
 
   // --- collapse v onto u ---
   bool collapse(int v, int u, bool require_quality) {
-    if (m_.frozen[v] || u == v) return false;
+    if (m_.frozen[v] || pinned(v) || u == v) return false;
     // new tets and their energies
     double old_max = 0, new_max = 0;
     std::vector<int> removed;
@@ -309,6 +427,66 @@ class Optimizer {
   FillStats& stats_;
   std::vector<std::vector<int>> vt_;
   std::vector<char> alive_;
+  std::vector<char> pinned_;
+
+  // Boundary faces (x, p, q) around x, as sorted (p, q): faces of one tet.
+  std::vector<std::array<int, 2>> boundary_link(int x) const {
+    std::vector<std::array<int, 3>> faces;
+    for (int t : vt_[x]) {
+      const Tet& q = m_.tets[t];
+      for (int k = 0; k < 4; ++k) {
+        if (q[k] == x) continue;
+        std::array<int, 3> f;
+        int j = 0;
+        for (int i = 0; i < 4; ++i)
+          if (i != k) f[j++] = q[i];
+        std::sort(f.begin(), f.end());
+        faces.push_back(f);
+      }
+    }
+    std::sort(faces.begin(), faces.end());
+    std::vector<std::array<int, 2>> out;
+    for (std::size_t i = 0; i < faces.size();) {
+      std::size_t j = i;
+      while (j < faces.size() && faces[j] == faces[i]) ++j;
+      if (j - i == 1) {
+        std::array<int, 2> e;
+        int k = 0;
+        for (int y : faces[i])
+          if (y != x) e[k++] = y;
+        out.push_back(e);
+      }
+      i = j;
+    }
+    return out;
+  }
+  // With the virtual vertex w joined to the boundary: w in lk(u) ∩ lk(v)
+  // needs uv on the boundary; a vertex p in both boundary links needs the
+  // boundary face (u, v, p); an edge in both would duplicate a face.
+  bool boundary_link_condition(int u, int v) const {
+    const auto bu = boundary_link(u), bv = boundary_link(v);
+    if (bu.empty() || bv.empty()) return true; // one is interior: no w in both
+    std::vector<int> pu, pv, puv;
+    for (const auto& e : bu) pu.insert(pu.end(), e.begin(), e.end());
+    for (const auto& e : bv) pv.insert(pv.end(), e.begin(), e.end());
+    for (const auto& e : bv)
+      if (e[0] == u || e[1] == u) puv.push_back(e[0] == u ? e[1] : e[0]);
+    if (puv.empty()) return false; // uv is not a boundary edge
+    for (auto* l : {&pu, &pv, &puv}) {
+      std::sort(l->begin(), l->end());
+      l->erase(std::unique(l->begin(), l->end()), l->end());
+    }
+    std::vector<int> common;
+    std::set_intersection(pu.begin(), pu.end(), pv.begin(), pv.end(), std::back_inserter(common));
+    for (int p : common)
+      if (p != u && p != v && !std::binary_search(puv.begin(), puv.end(), p)) return false;
+    auto su = bu, sv = bv;
+    std::sort(su.begin(), su.end());
+    std::sort(sv.begin(), sv.end());
+    std::vector<std::array<int, 2>> ce;
+    std::set_intersection(su.begin(), su.end(), sv.begin(), sv.end(), std::back_inserter(ce));
+    return ce.empty();
+  }
 
   bool orient_positive(Tet& t) const { return m_.v.orient(t[0], t[1], t[2], t[3]) > 0; }
   void kill(int t) {
@@ -413,6 +591,38 @@ void collapse_pass(Optimizer& o, bool only_rational) {
   }
 }
 
+// Removes the Steiner vertices on the surface (sweeps until none can go);
+// returns how many are left.
+std::size_t surface_steiner_pass(Optimizer& o) {
+  auto& m = o.mesh();
+  std::size_t left = 0;
+  for (bool progress = true; progress;) {
+    progress = false;
+    left = 0;
+    for (const auto& st : m.on_surface) {
+      if (!o.pinned(st.vertex)) continue;
+      // the allowed target giving the best worst tet
+      int best = -1;
+      double best_cost = std::numeric_limits<double>::infinity();
+      for (int u : st.targets) {
+        if (o.star(u).empty()) continue;
+        const double c = o.surface_collapse_cost(st.vertex, u);
+        if (c < best_cost) {
+          best_cost = c;
+          best = u;
+        }
+      }
+      const bool done = best >= 0 && o.collapse_on_surface(st.vertex, best);
+      if (done) {
+        progress = true;
+      } else {
+        ++left;
+      }
+    }
+  }
+  return left;
+}
+
 void flip_pass(Optimizer& o, double threshold) {
   auto& m = o.mesh();
   const int nt = o.num_tets();
@@ -427,6 +637,27 @@ void flip_pass(Optimizer& o, double threshold) {
   }
 }
 
+// Worst-tet passes: the free vertices of the tets whose energy is within a
+// factor of the current maximum (those decide the max AMIPS).
+void worst_pass(Optimizer& o, int passes) {
+  auto& m = o.mesh();
+  for (int pass = 0; pass < passes; ++pass) {
+    double mx = 0;
+    for (int t = 0; t < o.num_tets(); ++t)
+      if (o.alive(t)) mx = std::max(mx, o.energy(m.tets[t]));
+    const double threshold = std::max(2.0, 0.5 * mx);
+    std::vector<int> bad;
+    for (int t = 0; t < o.num_tets(); ++t)
+      if (o.alive(t) && o.energy(m.tets[t]) >= threshold) bad.push_back(t);
+    flip_pass(o, threshold);
+    bool any = false;
+    for (int t : bad)
+      if (o.alive(t))
+        for (int x : std::array<int, 4>(m.tets[t])) any |= o.smooth_max(x);
+    if (!any) break;
+  }
+}
+
 void smooth_pass(Optimizer& o) {
   auto& m = o.mesh();
   for (int v = 0; v < m.v.size(); ++v)
@@ -437,6 +668,7 @@ void smooth_pass(Optimizer& o) {
 
 mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const FillOptions& options, FillStats& stats) {
   Optimizer o(std::move(m), stats);
+  std::size_t on_surface = surface_steiner_pass(o);
   std::size_t left = o.round_pass();
   stats.unrounded_after_first_pass = left;
   for (int round = 0; round < options.optimize_rounds; ++round) {
@@ -447,6 +679,7 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
     logger().debug("volume: optimize round {}: {} collapses, {} flips, {} smooths, {} unrounded", round,
                    stats.collapses, stats.flips, stats.smooths, left);
   }
+  if (options.optimize_rounds > 0) worst_pass(o, 8);
   // Whatever is still rational: remove it or move it to a double position.
   for (int attempt = 0; attempt < 20 && left > 0; ++attempt) {
     collapse_pass(o, true);
@@ -455,6 +688,10 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
       if (!mm.v.exact[v] && !o.star(v).empty()) o.relocate(v);
     left = o.round_pass();
   }
+  if (on_surface > 0) on_surface = surface_steiner_pass(o);
+  if (on_surface > 0)
+    throw Error(ExitCode::internal,
+                fmt::format("volume: {} Steiner vertices on pinched surface edges/faces could not be removed", on_surface));
   left = o.count_rational();
   if (left > 0) throw Error(ExitCode::internal, fmt::format("volume: {} vertices could not be rounded", left));
   auto out = o.extract(num_keep);

@@ -1,0 +1,51 @@
+// Boundary-preserving tetrahedralization time (issue 6): `volume::tetrahedralize`
+// (one-sided extrusion + exact insertion + layer + rounding/optimization) on
+// real meshes from ~0.5k to ~100k faces. Target: within 5x of `tetgen -pYq`
+// (bench/compare_tetgen.py measures both on every good mesh).
+// Run: build/bench/bench_tetrahedralize [--benchmark_filter=...]
+// Counters: faces, output tets, per-stage seconds (extrusion, insertion,
+// layer, optimization), max AMIPS energy.
+#include "curvetet/io/read_surface.hpp"
+#include "curvetet/volume/tetrahedralize.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+namespace {
+
+void BM_Tetrahedralize(benchmark::State& state, const std::string& name) {
+  using namespace curvetet;
+  const auto input = mesh::to_surface_mesh(io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/" + name));
+  volume::TetrahedralizeResult r;
+  for (auto _ : state) {
+    r = volume::tetrahedralize(input);
+    benchmark::DoNotOptimize(r.mesh.tets.data());
+  }
+  state.counters["faces"] = input.num_faces();
+  state.counters["tets"] = r.mesh.num_tets();
+  state.counters["s_extrusion"] = r.seconds_extrusion;
+  state.counters["s_insert"] = r.interior.seconds_insert;
+  state.counters["s_layer"] = r.interior.seconds_layer;
+  state.counters["s_optimize"] = r.interior.seconds_optimize;
+  state.counters["max_amips"] = r.interior.max_amips;
+  state.counters["faces_per_s"] = benchmark::Counter(input.num_faces(), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+BENCHMARK_CAPTURE(BM_Tetrahedralize, thingi_552, std::string("thingi10k_288351.off"))
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(BM_Tetrahedralize, bunny_7k, std::string("bunny_libigl.off"))->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_Tetrahedralize, fandisk_13k, std::string("fandisk_cgal.off"))
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(BM_Tetrahedralize, armadillo_52k, std::string("armadillo_cgal.off"))
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(BM_Tetrahedralize, nefertiti_100k, std::string("nefertiti.off"))
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+
+} // namespace
+
+BENCHMARK_MAIN();
