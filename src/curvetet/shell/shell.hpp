@@ -13,6 +13,7 @@
 // prism f is parametrised by it. Initially (middle = input) prism f tracks its
 // own input face; after isolation splits a face, both halves track it.
 #include "curvetet/mesh/surface_mesh.hpp"
+#include "curvetet/shell/features.hpp"
 
 #include <vector>
 
@@ -46,6 +47,7 @@ struct Shell {
   // Input vertices first (points[i] is input vertex i), then any other
   // constraint points.
   std::vector<TrackedPoint> points;
+  ShellFeatures features;                // feature chains and corners (empty: none)
 
   int num_vertices() const { return static_cast<int>(middle.size()); }
   int num_prisms() const { return static_cast<int>(faces.size()); }

@@ -21,6 +21,7 @@
 //                     its new Π in a new prism tracking its face (else:
 //                     coverage) and ||p - middle(Π(p))|| < epsilon
 //                     (fills c.images)
+//  Features           feature chains and corners (feature_invariant.hpp)
 #include "curvetet/shell/middle_fit.hpp"
 #include "curvetet/shell/shell_editor.hpp"
 #include "curvetet/shell/star.hpp"
