@@ -27,7 +27,9 @@ std::function<int()> add_mesh_options(CLI::App& root) {
   };
   auto o = std::make_shared<Options>();
   add_input_options(root, o->input);
-  root.add_option("-o,--output", o->output, "Output mesh (.msh, Gmsh 4.1): order-P tets in \"domain\", boundary in \"boundary\"");
+  root.add_option("-o,--output", o->output,
+                  "Output mesh (.msh, Gmsh 4.1): order-P tets in \"domain\", boundary in \"boundary\", feature curves "
+                  "(with --features / --feature-angle) as lines in \"features\"");
   root.add_option("--order", o->pipeline.order, "Order P of the output tets (middle surface of degree P-1)")
       ->check(CLI::Range(2, 6))
       ->capture_default_str();
@@ -68,7 +70,7 @@ std::function<int()> add_mesh_options(CLI::App& root) {
     int code = 0;
     if (!o->output.empty() || !o->vtu.empty() || !o->map_path.empty()) {
       if (o->epsilon_abs > 0) o->pipeline.epsilon_abs = o->epsilon_abs;
-      auto result = pipeline::run_pipeline(in.mesh, o->pipeline, report);
+      auto result = pipeline::run_pipeline(in.mesh, o->pipeline, report, &in.feature_graph);
       const auto& v = result.verification;
       logger().info("result: {} tets of order {}, {} boundary triangles; {}", result.mesh.num_tets(), result.mesh.order,
                     result.mesh.num_boundary(), v.ok() ? "every guarantee verified" : "VERIFICATION FAILED");

@@ -24,6 +24,8 @@
 #include "curvetet/shell/build.hpp"
 #include "curvetet/shell/coarsen.hpp"
 #include "curvetet/shell/curved_middle.hpp"
+#include "curvetet/shell/feature_tracking.hpp"
+#include "curvetet/features/refine.hpp"
 #include "curvetet/shell/invariants.hpp"
 
 #include <filesystem>
@@ -129,10 +131,21 @@ Command add_shell_command(CLI::App& root) {
             Report report;
             auto in = read_checked_input(o->input, report);
             o->shell.debug_invariants = o->debug_invariants;
+            // With features: faces with 2+ feature edges are refined 1-to-3
+            // first (paper §5; vertex ids kept), then the chains are attached.
+            const auto& graph = in.feature_graph;
+            const bool featured = !graph.chains.empty() || !graph.corners.empty();
             shell::ShellBuild built;
             {
               StageTimer t(&report, "shell build");
-              built = shell::build_shell(in.mesh, o->shell);
+              if (featured) {
+                auto refined = features::refine_multi_feature_faces(in.mesh, in.features.edges);
+                report["features"]["refined_faces"] = refined.mesh.num_faces() - in.mesh.num_faces();
+                built = shell::build_shell(refined.mesh, o->shell);
+                shell::attach_features(built.shell, graph);
+              } else {
+                built = shell::build_shell(in.mesh, o->shell);
+              }
             }
             const auto& st = built.stats;
             const auto& s = built.shell;
@@ -180,10 +193,29 @@ Command add_shell_command(CLI::App& root) {
               logger().info("coarsen: {} -> {} faces ({:.1f}x) in {:.2f} s, max distance {:.6g} (epsilon {:.6g})",
                             c.faces_before, c.faces_after, double(c.faces_before) / std::max(1, c.faces_after),
                             c.seconds, c.max_distance, c.epsilon);
+              if (featured) {
+                const auto fc = shell::check_features(s);
+                report["features"]["check"] = {{"corners", fc.corners},
+                                               {"corners_missing", fc.corners_missing},
+                                               {"corners_moved", fc.corners_moved},
+                                               {"chains", fc.chains},
+                                               {"broken_chains", fc.broken_chains},
+                                               {"coarse_edges", fc.coarse_edges},
+                                               {"missing_edges", fc.missing_edges},
+                                               {"max_distance", fc.max_distance},
+                                               {"ok", fc.ok(c.epsilon)}};
+                logger().info("features: {} corners ({} missing, {} moved), {} chains ({} broken) in {} coarse edges, "
+                              "max distance along features {:.6g}",
+                              fc.corners, fc.corners_missing, fc.corners_moved, fc.chains, fc.broken_chains,
+                              fc.coarse_edges, fc.max_distance);
+                if (!fc.ok(c.epsilon))
+                  throw Error(ExitCode::internal, "feature preservation violated: " + fc.first_problem);
+              }
             }
 
-            std::vector<io::VertexMapRecord> map(s.points.size());
-            for (std::size_t i = 0; i < s.points.size(); ++i)
+            // Input vertices only (refinement centroids follow them in s.points).
+            std::vector<io::VertexMapRecord> map(in.mesh.num_vertices());
+            for (std::size_t i = 0; i < map.size(); ++i)
               map[i] = {s.points[i].image.prism, s.points[i].image.u, s.points[i].image.v};
 
             namespace fs = std::filesystem;

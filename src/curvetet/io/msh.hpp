@@ -3,13 +3,15 @@
 //
 // Writing: MSH 4.1 (ASCII or binary, little-endian as the host) and MSH 2.2
 // ASCII. Tets of order 1..8 become Gmsh types 4/11/29/30/31/71/72/73, boundary
-// triangles of the same order types 2/9/21/23/25/42/43/44. Node order is a
+// triangles of the same order types 2/9/21/23/25/42/43/44, lines (feature
+// curves) types 1/8/26/27/28/62/63/64 on one curve entity per line tag (no
+// bounding points; their nodes stay on the surfaces). Node order is a
 // plain copy (curvetet's internal order is Gmsh's). Entities: one surface
 // per distinct boundary tag and one volume per distinct tet tag (physical
 // group = the tag; names from mesh.groups, set_default_groups: "boundary" =
 // 2D tag 1, "domain" = 3D tag 2); a node belongs to the first entity using it,
 // surfaces first. Node tags are 1-based and contiguous; element tags are the
-// element's position (boundary triangles first, then tets), and the reader
+// element's position (boundary triangles first, then tets, then lines), and the reader
 // restores that order. Coordinates are
 // written with 17 significant digits (bit-exact round trip). Every file goes
 // through AtomicFile.

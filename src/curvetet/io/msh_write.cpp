@@ -14,6 +14,12 @@ namespace curvetet::io {
 
 namespace {
 
+// Gmsh element types of Lagrange lines of order 1..8.
+int gmsh_line_type(int order) {
+  constexpr int kTypes[8] = {1, 8, 26, 27, 28, 62, 63, 64};
+  return kTypes[order - 1];
+}
+
 int tag_or_zero(const std::vector<int>& tags, int i) { return i < static_cast<int>(tags.size()) ? tags[i] : 0; }
 
 // Distinct physical tags in order of first use (0 = none counts as a tag, so
@@ -34,7 +40,8 @@ int index_of(const std::vector<int>& v, int x) { return static_cast<int>(std::fi
 // 1..V) for the tets. A node belongs to the first entity, surfaces first,
 // whose elements use it (unused nodes go to the first volume).
 struct Layout {
-  std::vector<int> surface_phys, volume_phys;
+  std::vector<int> line_phys, surface_phys, volume_phys;
+  std::vector<int> line_entity;                     // 0-based curve entity per line
   std::vector<int> triangle_entity, tet_entity;     // 0-based entity index per element
   std::vector<std::vector<int>> surface_nodes, volume_nodes;
   Eigen::Vector3d lo, hi;
@@ -42,6 +49,8 @@ struct Layout {
 
 Layout layout(const mesh::TetMesh& m) {
   Layout l;
+  l.line_phys = distinct(m.line_tags, m.num_lines());
+  for (int e = 0; e < m.num_lines(); ++e) l.line_entity.push_back(index_of(l.line_phys, tag_or_zero(m.line_tags, e)));
   l.surface_phys = distinct(m.boundary_tags, m.num_boundary());
   l.volume_phys = distinct(m.tet_tags, m.num_tets());
   if (l.volume_phys.empty()) l.volume_phys.push_back(0);
@@ -131,8 +140,8 @@ void write_v41(std::ostream& o, const mesh::TetMesh& m, bool binary) {
   const Layout l = layout(m);
   const int tri_type = highorder::gmsh_triangle_type(m.order), tet_type = highorder::gmsh_tet_type(m.order);
   const std::size_t num_nodes = m.nodes.size();
-  const std::size_t num_elements = static_cast<std::size_t>(m.num_boundary()) + m.num_tets();
-  const std::size_t S = l.surface_phys.size(), V = l.volume_phys.size();
+  const std::size_t num_elements = static_cast<std::size_t>(m.num_boundary()) + m.num_tets() + m.num_lines();
+  const std::size_t C = l.line_phys.size(), S = l.surface_phys.size(), V = l.volume_phys.size();
   Out out(o, binary);
 
   o << "$MeshFormat\n4.1 " << (binary ? 1 : 0) << " 8\n";
@@ -144,7 +153,7 @@ void write_v41(std::ostream& o, const mesh::TetMesh& m, bool binary) {
   write_physical_names(o, m);
 
   o << "$Entities\n";
-  out.num<std::uint64_t>(0).num<std::uint64_t>(0).num<std::uint64_t>(S).num<std::uint64_t>(V);
+  out.num<std::uint64_t>(0).num<std::uint64_t>(C).num<std::uint64_t>(S).num<std::uint64_t>(V);
   out.endl();
   auto entity = [&](int tag, int phys, std::size_t bounding) {
     out.num<int>(tag);
@@ -156,6 +165,9 @@ void write_v41(std::ostream& o, const mesh::TetMesh& m, bool binary) {
     for (std::size_t s = 0; s < bounding; ++s) out.num<int>(static_cast<int>(s + 1));
     out.endl();
   };
+  // Curves (feature lines) have no bounding points; their nodes are owned
+  // by the surfaces (every line is an edge of boundary triangles).
+  for (std::size_t c = 0; c < C; ++c) entity(static_cast<int>(c + 1), l.line_phys[c], 0);
   for (std::size_t s = 0; s < S; ++s) entity(static_cast<int>(s + 1), l.surface_phys[s], 0);
   for (std::size_t v = 0; v < V; ++v) entity(static_cast<int>(v + 1), l.volume_phys[v], V == 1 ? S : 0);
   out.end_section();
@@ -192,20 +204,24 @@ void write_v41(std::ostream& o, const mesh::TetMesh& m, bool binary) {
 
   // Elements: one block per entity, boundary triangles first, then tets.
   o << "$Elements\n";
-  std::vector<std::vector<int>> tri_of(S), tet_of(V);
+  std::vector<std::vector<int>> tri_of(S), tet_of(V), line_of(C);
+  for (int e = 0; e < m.num_lines(); ++e) line_of[l.line_entity[e]].push_back(e);
   for (int b = 0; b < m.num_boundary(); ++b) tri_of[l.triangle_entity[b]].push_back(b);
   for (int t = 0; t < m.num_tets(); ++t) tet_of[l.tet_entity[t]].push_back(t);
   std::size_t num_blocks = 0;
   for (const auto& x : tri_of) num_blocks += !x.empty();
   for (const auto& x : tet_of) num_blocks += !x.empty();
+  for (const auto& x : line_of) num_blocks += !x.empty();
   out.num<std::uint64_t>(num_blocks).num<std::uint64_t>(num_elements).num<std::uint64_t>(num_elements ? 1 : 0);
   out.num<std::uint64_t>(num_elements);
   out.endl();
-  // Element tag = position in the mesh (triangles first): readers restore
-  // the order from it across blocks.
+  // Element tag = position in the mesh (triangles first, then tets, then
+  // lines): readers restore the order from it across blocks.
   auto element_block = [&](int dim, int entity_tag, int type, const std::vector<int>& ids, int per, auto nodes_of) {
     if (ids.empty()) return;
-    const std::uint64_t first_tag = dim == 2 ? 1 : static_cast<std::uint64_t>(m.num_boundary()) + 1;
+    const std::uint64_t first_tag = dim == 2   ? 1
+                                    : dim == 3 ? static_cast<std::uint64_t>(m.num_boundary()) + 1
+                                               : static_cast<std::uint64_t>(m.num_boundary()) + m.num_tets() + 1;
     out.num<int>(dim).num<int>(entity_tag).num<int>(type).num<std::uint64_t>(ids.size());
     out.endl();
     for (int e : ids) {
@@ -219,6 +235,9 @@ void write_v41(std::ostream& o, const mesh::TetMesh& m, bool binary) {
                   [&](int b) { return m.boundary_triangle(b); });
   for (std::size_t v = 0; v < V; ++v)
     element_block(3, static_cast<int>(v + 1), tet_type, tet_of[v], m.tet_nodes(), [&](int t) { return m.tet(t); });
+  for (std::size_t c = 0; c < C; ++c)
+    element_block(1, static_cast<int>(c + 1), gmsh_line_type(m.order), line_of[c], m.line_nodes(),
+                  [&](int e) { return m.line(e); });
   out.end_section();
   o << "$EndElements\n";
 }
@@ -232,7 +251,7 @@ void write_v22(std::ostream& o, const mesh::TetMesh& m) {
     const auto& p = m.nodes[i];
     o << fmt::format("{} {:.17g} {:.17g} {:.17g}\n", i + 1, p.x(), p.y(), p.z());
   }
-  o << "$EndNodes\n$Elements\n" << m.num_boundary() + m.num_tets() << '\n';
+  o << "$EndNodes\n$Elements\n" << m.num_boundary() + m.num_tets() + m.num_lines() << '\n';
   int tag = 1;
   // Tags: physical group, then elementary entity (surface 1 / volume 1).
   for (int b = 0; b < m.num_boundary(); ++b) {
@@ -243,6 +262,11 @@ void write_v22(std::ostream& o, const mesh::TetMesh& m) {
   for (int t = 0; t < m.num_tets(); ++t) {
     o << tag++ << ' ' << tet_type << " 2 " << tag_or_zero(m.tet_tags, t) << " 1";
     for (int i = 0; i < m.tet_nodes(); ++i) o << ' ' << m.tet(t)[i] + 1;
+    o << '\n';
+  }
+  for (int e = 0; e < m.num_lines(); ++e) {
+    o << tag++ << ' ' << gmsh_line_type(m.order) << " 2 " << tag_or_zero(m.line_tags, e) << " 1";
+    for (int i = 0; i < m.line_nodes(); ++i) o << ' ' << m.line(e)[i] + 1;
     o << '\n';
   }
   o << "$EndElements\n";

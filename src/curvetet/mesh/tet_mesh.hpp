@@ -10,6 +10,8 @@
 // Boundary triangle b has nodes boundary[b * triangle_nodes() + i] in the
 // internal triangle order (corners, edges 0-1, 1-2, 2-0, interior),
 // counter-clockwise seen from outside the domain.
+// Line l (feature curves, optional) has nodes lines[l * line_nodes() + i]:
+// its two ends, then its interior nodes from end 0 to end 1 (Gmsh's order).
 // Tags are physical group tags (0 = none); `groups` names them.
 #include <Eigen/Core>
 
@@ -19,7 +21,7 @@
 namespace curvetet::mesh {
 
 struct PhysicalGroup {
-  int dim = 0; // 2 or 3
+  int dim = 0; // 1, 2 or 3
   int tag = 0;
   std::string name;
 };
@@ -31,10 +33,15 @@ struct TetMesh {
   std::vector<int> boundary; // num_boundary() x triangle_nodes()
   std::vector<int> tet_tags;      // one per tet (may be empty = all 0)
   std::vector<int> boundary_tags; // one per boundary triangle (may be empty)
+  std::vector<int> lines;         // num_lines() x line_nodes() (may be empty)
+  std::vector<int> line_tags;     // one per line (may be empty)
   std::vector<PhysicalGroup> groups;
 
   int tet_nodes() const { return (order + 1) * (order + 2) * (order + 3) / 6; }
   int triangle_nodes() const { return (order + 1) * (order + 2) / 2; }
+  int line_nodes() const { return order + 1; }
+  int num_lines() const { return static_cast<int>(lines.size()) / line_nodes(); }
+  const int* line(int l) const { return lines.data() + static_cast<std::size_t>(l) * line_nodes(); }
   int num_tets() const { return static_cast<int>(tets.size()) / tet_nodes(); }
   int num_boundary() const { return static_cast<int>(boundary.size()) / triangle_nodes(); }
   const int* tet(int t) const { return tets.data() + static_cast<std::size_t>(t) * tet_nodes(); }
@@ -45,6 +52,8 @@ struct TetMesh {
 // "boundary" (dim 2, tag 1), tets in "domain" (dim 3, tag 2).
 constexpr int kBoundaryTag = 1;
 constexpr int kDomainTag = 2;
+// Feature curves written by curvetet: lines in "features" (dim 1, tag 3).
+constexpr int kFeatureTag = 3;
 void set_default_groups(TetMesh& mesh);
 
 // With an exterior region (`--fill all`, flows around an obstacle): its tets

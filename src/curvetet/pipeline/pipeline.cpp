@@ -3,11 +3,13 @@
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/pipeline/features_stage.hpp"
 #include "curvetet/shell/coarsen.hpp"
 #include "curvetet/shell/curved_middle.hpp"
 
 #include <memory>
 #include "curvetet/shell/extrusion.hpp"
+#include "curvetet/shell/feature_tracking.hpp"
 #include "curvetet/volume/assemble.hpp"
 #include "curvetet/volume/fill.hpp"
 
@@ -49,7 +51,9 @@ mesh::LinearTetMesh fill_outside(const mesh::SurfaceMesh& top, double offset, do
 
 } // namespace
 
-PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOptions& o, Report& report) {
+PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOptions& o, Report& report,
+                            const features::FeatureGraph* features) {
+  const bool featured = features && (!features->chains.empty() || !features->corners.empty());
   if (o.order < 2 || o.order > 6) throw Error(ExitCode::usage, "--order must be in 2..6");
   PipelineResult r;
   const double diagonal = mesh::bbox_diagonal(input.vertices);
@@ -58,8 +62,9 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
 
   {
     StageTimer t(&report, "shell");
-    auto built = shell::build_shell(input, o.shell);
+    auto built = shell::build_shell(featured ? refine_for_features(input, *features) : input, o.shell);
     r.shell = std::move(built.shell);
+    if (featured) shell::attach_features(r.shell, *features);
     report["shell"] = {{"faces", r.shell.num_prisms()},
                        {"singular_vertices", built.stats.singular_vertices},
                        {"min_thickness", built.stats.min_thickness}};
@@ -84,6 +89,12 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
     if (const auto* curved = dynamic_cast<const shell::CurvedMiddleFit*>(fit.get()))
       report["coarsen"]["curved_middle"] = curved->stats().json();
     logger().info("coarsened the shell from {} to {} faces", c.faces_before, c.faces_after);
+    if (featured) {
+      const auto fc = shell::check_features(r.shell);
+      report["features"] = {{"corners", fc.corners},       {"chains", fc.chains},
+                            {"coarse_edges", fc.coarse_edges}, {"max_distance_relative", fc.max_distance / diagonal}};
+      if (!fc.ok(c.epsilon)) throw Error(ExitCode::internal, "feature preservation violated: " + fc.first_problem);
+    }
   }
 
   volume::CurvedMiddle middle;
@@ -114,6 +125,7 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
     volume::AssemblyStats stats;
     r.mesh = volume::assemble_curved_mesh(middle, fill, o.order, &stats,
                                           o.fill == FillRegion::all ? &exterior : nullptr);
+    if (featured) report["features"]["lines"] = add_feature_lines(r.mesh, r.shell);
     report["assembly"] = {{"fill_tets", stats.fill_tets},
                           {"slab_tets", stats.slab_tets},
                           {"pinched_slab_tets", stats.pinched_slab_tets},

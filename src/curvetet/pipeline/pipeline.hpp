@@ -10,6 +10,7 @@
 // changing this interface.
 #include "curvetet/check/verify_tet_mesh.hpp"
 #include "curvetet/core/report.hpp"
+#include "curvetet/features/chains.hpp"
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/mesh/tet_mesh.hpp"
 #include "curvetet/shell/build.hpp"
@@ -44,9 +45,14 @@ struct PipelineResult {
   shell::Shell shell; // the final shell (its map sends input points to the boundary)
 };
 
-// `input` must satisfy check::preconditions. Throws Error(internal) when a
+// `input` must satisfy check::preconditions. With `features` (grouped on
+// `input`; paper §5) the shell is built on the 1-to-3 refined input, keeps
+// every corner and chain through coarsening (feature_invariant.hpp), and
+// the output mesh carries the coarse feature curves as order-P lines in
+// the physical group "features". Throws Error(internal) when a
 // stage's own guarantee fails (a bug); the verification's verdict is in the
 // result for the caller to act on.
-PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOptions& options, Report& report);
+PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOptions& options, Report& report,
+                            const features::FeatureGraph* features = nullptr);
 
 } // namespace curvetet::pipeline

@@ -1,6 +1,7 @@
 #include "curvetet/shell/operations.hpp"
 
 #include "curvetet/shell/extrusion.hpp"
+#include "curvetet/shell/feature_tracking.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -54,6 +55,7 @@ std::optional<StarCandidate> collapse_candidate(const ShellEditor& e, int from, 
   c.op = OpKind::collapse;
   c.removed = sorted(e.faces_of(from));
   c.removed_vertex = from;
+  c.edge = {from, to};
   for (int f : c.removed) {
     Tri t = e.shell().faces[f];
     if (corner_of(t, to) >= 0) continue; // the two faces of the edge vanish
@@ -71,6 +73,7 @@ std::optional<StarCandidate> flip_candidate(const ShellEditor& e, int a, int b) 
   if (std::binary_search(nc.begin(), nc.end(), ef->d)) return std::nullopt; // (c, d) exists
   StarCandidate c;
   c.op = OpKind::flip;
+  c.edge = {a, b};
   c.removed = sorted({ef->f_ab, ef->f_ba});
   c.faces = {{a, ef->d, ef->c}, {ef->d, b, ef->c}};
   return c;
@@ -88,9 +91,12 @@ std::optional<StarCandidate> split_candidate(const ShellEditor& e, int a, int b)
   const auto ef = edge_faces(e, a, b);
   if (!ef) return std::nullopt;
   const Shell& s = e.shell();
-  // The edge midpoint in each adjacent prism, and where its fiber meets M.
-  std::optional<Vec3> hit;
+  // The edge midpoint in each adjacent prism, and where its fiber meets M;
+  // on a feature edge, an input vertex of its chain instead (App. B).
+  std::optional<Vec3> hit = feature_split_point(s, a, b);
+  const bool on_feature = s.features.edge(a, b) != nullptr;
   for (int f : {ef->f_ab, ef->f_ba}) {
+    if (on_feature) break;
     const Tri& t = s.faces[f];
     double uv[3] = {0, 0, 0};
     uv[corner_of(t, a)] = 0.5;
@@ -106,6 +112,7 @@ std::optional<StarCandidate> split_candidate(const ShellEditor& e, int a, int b)
   if (!hit) return std::nullopt;
   StarCandidate c;
   c.op = OpKind::split;
+  c.edge = {a, b};
   c.removed = sorted({ef->f_ab, ef->f_ba});
   const int m = kNewVertex;
   c.faces = {{a, m, ef->c}, {m, b, ef->c}, {b, m, ef->d}, {m, a, ef->d}};
@@ -131,19 +138,26 @@ std::vector<StarCandidate> smooth_candidates(const ShellEditor& e, int v, const 
   Vec3 centroid = Vec3::Zero();
   for (int w : nb) centroid += s.middle[w];
   centroid /= static_cast<double>(nb.size());
-  std::vector<int> input_vertices;
-  for (int f : base.removed)
-    for (int t : s.tracked[f])
-      for (int iv : s.input.faces[t]) input_vertices.push_back(iv);
-  std::sort(input_vertices.begin(), input_vertices.end());
-  input_vertices.erase(std::unique(input_vertices.begin(), input_vertices.end()), input_vertices.end());
+  // A feature vertex pans only along its chain (App. B; a corner not at all).
+  std::vector<Vec3> targets;
+  if (auto on_chain = feature_pan_targets(s, v)) {
+    targets = std::move(*on_chain);
+  } else {
+    std::vector<int> input_vertices;
+    for (int f : base.removed)
+      for (int t : s.tracked[f])
+        for (int iv : s.input.faces[t]) input_vertices.push_back(iv);
+    std::sort(input_vertices.begin(), input_vertices.end());
+    input_vertices.erase(std::unique(input_vertices.begin(), input_vertices.end()), input_vertices.end());
+    for (int iv : input_vertices) targets.push_back(s.input.vertices[iv]);
+  }
   double best = std::numeric_limits<double>::infinity();
   Vec3 target = s.middle[v];
-  for (int iv : input_vertices) {
-    const double d = (s.input.vertices[iv] - centroid).squaredNorm();
+  for (const Vec3& x : targets) {
+    const double d = (x - centroid).squaredNorm();
     if (d < best) {
       best = d;
-      target = s.input.vertices[iv];
+      target = x;
     }
   }
   const bool pan = target != s.middle[v];

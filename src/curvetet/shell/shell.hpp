@@ -13,6 +13,7 @@
 // prism f is parametrised by it. Initially (middle = input) prism f tracks its
 // own input face; after isolation splits a face, both halves track it.
 #include "curvetet/mesh/surface_mesh.hpp"
+#include "curvetet/shell/features.hpp"
 
 #include <array>
 #include <vector>
@@ -54,6 +55,7 @@ struct Shell {
   // point of MapPoint (prism, u, v) is that triangle's map at (u, v).
   int middle_degree = 1;
   std::vector<std::vector<Vec3>> middle_nodes;
+  ShellFeatures features;                // feature chains and corners (empty: none)
 
   int num_vertices() const { return static_cast<int>(middle.size()); }
   int num_prisms() const { return static_cast<int>(faces.size()); }

@@ -1,6 +1,7 @@
 #include "curvetet/shell/shell_editor.hpp"
 
 #include "curvetet/core/error.hpp"
+#include "curvetet/shell/feature_tracking.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -85,6 +86,9 @@ geometry::Box3 ShellEditor::cap_box(int cap) const {
 }
 
 std::vector<int> ShellEditor::commit(const StarCandidate& c, int batch) {
+  // Features first: the plan compares moved positions with the current ones.
+  // A new vertex (if any) gets id num_vertices().
+  apply_feature_edit(s_, c, s_.num_vertices());
   // 1. Retire the removed prisms.
   for (int f : c.removed) {
     for (int side = 0; side < 2; ++side) grid_.erase(2 * f + side, cap_box(2 * f + side));
@@ -205,6 +209,7 @@ void ShellEditor::compact() {
   if (!s.middle_nodes.empty()) s.middle_nodes = std::move(middle_nodes);
   for (auto& p : s.points)
     if (p.image.prism >= 0) p.image.prism = fmap[p.image.prism];
+  remap_feature_vertices(s.features, vmap, nv);
   rebuild();
 }
 

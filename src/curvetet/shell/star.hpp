@@ -10,6 +10,7 @@
 #include "curvetet/shell/prism_geometry.hpp"
 #include "curvetet/shell/shell.hpp"
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string_view>
@@ -37,6 +38,7 @@ enum class Rejection : std::uint8_t {
   caps_intersection, // invariant 3: new caps against all caps
   curved_fit,        // the middle-surface fit of the new triangles failed
   distance,          // a constraint point would map farther than epsilon
+  feature,           // breaks a feature rule (feature_invariant.hpp)
   batch_conflict,    // new caps cross caps committed earlier in the same batch
   count_
 };
@@ -52,6 +54,7 @@ struct StarCandidate {
   std::vector<int> moved;
   std::vector<Vec3> moved_bottom, moved_middle, moved_top;
   int removed_vertex = -1;   // collapse: the vertex that disappears
+  std::array<int, 2> edge{-1, -1}; // collapse: (from, to); flip, split: the edge (a, b)
   // ---- derived (filled by the invariant list) ----
   std::vector<PrismGeom> geoms;             // per new face
   std::vector<int> old_tracked;             // union of the removed prisms' tracked faces

@@ -1,5 +1,7 @@
 #include "curvetet/shell/star_invariants.hpp"
 
+#include "curvetet/shell/feature_invariant.hpp"
+
 #include "curvetet/geometry/triangle_pair.hpp"
 
 #include "curvetet/geometry/predicates.hpp"
@@ -35,6 +37,7 @@ std::string_view to_string(Rejection r) {
     case Rejection::caps_intersection: return "caps_intersection";
     case Rejection::curved_fit: return "curved_fit";
     case Rejection::distance: return "distance";
+    case Rejection::feature: return "feature";
     case Rejection::batch_conflict: return "batch_conflict";
     case Rejection::count_: break;
   }
@@ -319,6 +322,7 @@ InvariantList default_star_invariants() {
   l.push_back(std::make_unique<MapImages>());
   l.push_back(std::make_unique<CurvedFit>());
   l.push_back(std::make_unique<Distance>());
+  l.push_back(make_feature_invariant());
   return l;
 }
 

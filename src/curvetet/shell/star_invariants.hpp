@@ -23,6 +23,7 @@
 //                     the curved fit uses c.images as samples)
 //  Distance           ||p - middle(Π(p))|| < epsilon for those points, the
 //                     middle evaluated through MiddleFit::evaluate
+//  Features           feature chains and corners (feature_invariant.hpp)
 #include "curvetet/shell/middle_fit.hpp"
 #include "curvetet/shell/shell_editor.hpp"
 #include "curvetet/shell/star.hpp"
