@@ -95,7 +95,7 @@ void add_samples(const Shell& s, const StarCandidate& c, PatchFitProblem& p) {
 
 } // namespace
 
-CurvedMiddleFit::CurvedMiddleFit(int degree) : degree_(degree) {
+CurvedMiddleFit::CurvedMiddleFit(int degree, double epsilon) : degree_(degree), epsilon_(epsilon) {
   if (degree < 2 || degree > 7) throw Error(ExitCode::usage, "the curved middle degree must be in 2..7 (order 3..8)");
   // A rejected fit only costs a coarser result; keep the budget small.
   certificate_.max_pieces = 200;
@@ -114,20 +114,37 @@ bool CurvedMiddleFit::fit_and_check(const ShellEditor& editor, StarCandidate& c)
   p.corners.resize(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) p.corners[i] = editor.middle(c, ids[i]);
   add_samples(s, c, p);
+  // Alternatives in order: the least-squares fit, then (where that misses
+  // epsilon at a constraint point or is not certified, e.g. across a sharp
+  // crease) the star's free nodes left flat, so curving never makes a star
+  // that a flat middle would pass fail.
+  auto within_epsilon = [&](const std::vector<std::vector<Vec3>>& nodes) {
+    for (const auto& im : c.images) {
+      const Vec3 x = highorder::triangle_point(degree_, nodes[im.local].data(), Eigen::Vector2d(im.u, im.v));
+      if (!((x - s.points[im.point].position).norm() < epsilon_)) return false;
+    }
+    return true;
+  };
   using clock = std::chrono::steady_clock;
-  const auto t0 = clock::now();
-  auto fit = highorder::fit_patch_star(p);
-  const auto t1 = clock::now();
-  bool ok = true;
-  for (std::size_t k = 0; k < c.faces.size() && ok; ++k)
-    ok = slabs_positive(c.geoms[k], degree_, fit.nodes[k], certificate_);
-  const auto t2 = clock::now();
-  fits_ += 1;
-  rejected_ += ok ? 0 : 1;
-  fit_ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
-  certificate_ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(t2 - t1).count();
-  if (ok) c.middle_nodes = std::move(fit.nodes);
-  return ok;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (attempt == 1) p.samples.clear(); // minimum-norm change from flat: the free nodes stay flat
+    const auto t0 = clock::now();
+    auto fit = highorder::fit_patch_star(p);
+    const auto t1 = clock::now();
+    bool ok = within_epsilon(fit.nodes);
+    for (std::size_t k = 0; k < c.faces.size() && ok; ++k)
+      ok = slabs_positive(c.geoms[k], degree_, fit.nodes[k], certificate_);
+    const auto t2 = clock::now();
+    fits_ += 1;
+    rejected_ += ok ? 0 : 1;
+    fit_ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
+    certificate_ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(t2 - t1).count();
+    if (ok) {
+      c.middle_nodes = std::move(fit.nodes);
+      return true;
+    }
+  }
+  return false;
 }
 
 CurvedFitStats CurvedMiddleFit::stats() const {

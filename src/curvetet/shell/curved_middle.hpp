@@ -12,7 +12,10 @@
 //     edges keeps its current position (so neighbours stay conforming).
 //  2. check: both slabs of every new prism (bottom -> curved middle, curved
 //     middle -> top) are certified positive by the Bézier certificate
-//     (highorder::certify_slab); `undecided` counts as a failure.
+//     (highorder::certify_slab); `undecided` counts as a failure. If that
+//     fails or the fit misses epsilon at a constraint point, the same star
+//     with its free nodes left flat (boundary-edge nodes still fixed) is
+//     tried and checked the same way.
 // The Distance invariant then measures ε on the curved surface through
 // evaluate(). The fitted nodes travel in c.middle_nodes to the commit.
 #include "curvetet/highorder/jacobian_certificate.hpp"
@@ -22,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <limits>
 
 namespace curvetet::shell {
 
@@ -35,8 +39,9 @@ struct CurvedFitStats {
 
 class CurvedMiddleFit final : public MiddleFit {
  public:
-  // degree k in 2..7.
-  explicit CurvedMiddleFit(int degree);
+  // degree k in 2..7. epsilon (absolute): a fit that misses it at a
+  // constraint point is replaced by the flat alternative (see above).
+  explicit CurvedMiddleFit(int degree, double epsilon = std::numeric_limits<double>::infinity());
   int degree() const override { return degree_; }
   bool fit_and_check(const ShellEditor& editor, StarCandidate& c) const override;
   Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const override;
@@ -44,6 +49,7 @@ class CurvedMiddleFit final : public MiddleFit {
 
  private:
   int degree_;
+  double epsilon_;
   highorder::CertificateOptions certificate_;
   mutable std::atomic<long long> fits_{0}, rejected_{0}, fit_ns_{0}, certificate_ns_{0};
 };
