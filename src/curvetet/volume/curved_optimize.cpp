@@ -99,7 +99,7 @@ class CurvedOptimizer {
   }
 
   // Max AMIPS of tet t (one evaluation when straight).
-  double tet_amips(int t) const {
+  double tet_amips(int t, double bound = std::numeric_limits<double>::infinity()) const {
     const int* ids = m_.tet(t);
     if (straight(t)) {
       Eigen::Matrix3d j;
@@ -108,7 +108,7 @@ class CurvedOptimizer {
     }
     Vec3 nodes[165]; // order <= 8
     for (int i = 0; i < np_; ++i) nodes[i] = m_.nodes[ids[i]];
-    return highorder::tet_max_amips(m_.order, nodes);
+    return highorder::tet_max_amips(m_.order, nodes, bound);
   }
 
   bool certified(int t) const {
@@ -180,7 +180,7 @@ class CurvedOptimizer {
   double objective(const std::vector<int>& tets, double bound = std::numeric_limits<double>::infinity()) const {
     double worst = 0;
     for (int t : tets) {
-      worst = std::max(worst, tet_amips(t));
+      worst = std::max(worst, tet_amips(t, bound));
       if (worst >= bound) break;
     }
     return worst;
