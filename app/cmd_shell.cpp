@@ -178,7 +178,7 @@ Command add_shell_command(CLI::App& root) {
               o->coarsen.target_pillar = o->shell.extrusion.target_thickness;
               o->coarsen.singular_dot = o->shell.extrusion.singular_dot;
               std::unique_ptr<shell::MiddleFit> fit;
-              if (o->order > 2) fit = std::make_unique<shell::CurvedMiddleFit>(o->order - 1, shell::absolute_epsilon(built.shell, o->coarsen));
+              if (o->order > 2) fit = std::make_unique<shell::CurvedMiddleFit>(o->order - 1);
               const auto c = shell::coarsen_shell(built.shell, o->coarsen, fit.get());
               report["coarsen"] = coarsen_json(c);
               if (const auto* curved = dynamic_cast<const shell::CurvedMiddleFit*>(fit.get())) {

@@ -130,7 +130,7 @@ TEST(CoarsenInvariants, CapsIntersectionRejected) {
 TEST(CoarsenInvariants, CurvedFitExtensionPointIsConsulted) {
   struct RejectingFit final : MiddleFit {
     int degree() const override { return 1; }
-    bool fit_and_check(const ShellEditor&, StarCandidate&) const override { return false; }
+    bool fit_and_check(const ShellEditor&, StarCandidate&, double) const override { return false; }
     Vec3 evaluate(const StarCandidate&, int, double, double) const override { return Vec3::Zero(); }
   };
   Shell s = flat_prism();

@@ -131,7 +131,7 @@ TEST(CurvedMiddle, CoarsensFurtherThanFlatWithEveryInvariant) {
   Shell flat = build_shell(input).shell, curved = flat;
   const auto lf = coarsen_shell(flat, o);
   o.debug_invariants = true; // global invariants + certified slabs after every pass
-  const CurvedMiddleFit fit(3, absolute_epsilon(curved, o));
+  const CurvedMiddleFit fit(3);
   const auto lc = coarsen_shell(curved, o, &fit);
   EXPECT_LT(lc.faces_after, lf.faces_after);
   EXPECT_EQ(curved.middle_degree, 3);

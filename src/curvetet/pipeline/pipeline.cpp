@@ -79,7 +79,7 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
     co.debug_invariants = o.shell.debug_invariants;
     // Middle of degree P-1 (paper §4.1); P = 2 keeps it flat.
     std::unique_ptr<shell::MiddleFit> fit;
-    if (o.order > 2 && o.curved_middle) fit = std::make_unique<shell::CurvedMiddleFit>(o.order - 1, shell::absolute_epsilon(r.shell, co));
+    if (o.order > 2 && o.curved_middle) fit = std::make_unique<shell::CurvedMiddleFit>(o.order - 1);
     const auto c = shell::coarsen_shell(r.shell, co, fit.get());
     report["coarsen"] = {{"faces_before", c.faces_before}, {"faces_after", c.faces_after},
                          {"rounds", c.rounds},

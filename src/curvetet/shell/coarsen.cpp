@@ -302,17 +302,13 @@ void debug_check(const Shell& s, double epsilon, const std::string& stage) {
 
 } // namespace
 
-double absolute_epsilon(const Shell& s, const CoarsenOptions& o) {
-  return o.epsilon_abs > 0 ? o.epsilon_abs : o.epsilon * mesh::bbox_diagonal(s.input.vertices);
-}
-
 CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* fit) {
   const auto start = clock_type::now();
   const LinearMiddle linear;
   if (!fit) fit = &linear;
   const double diag = mesh::bbox_diagonal(s.input.vertices);
   CoarsenStats out;
-  out.epsilon = absolute_epsilon(s, o);
+  out.epsilon = o.epsilon_abs > 0 ? o.epsilon_abs : o.epsilon * diag;
   out.faces_before = s.num_prisms();
   out.vertices_before = s.num_vertices();
   if (fit->degree() > 1 && (s.middle_degree != fit->degree() || s.middle_nodes.size() != s.faces.size()))

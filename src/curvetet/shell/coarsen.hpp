@@ -63,9 +63,6 @@ struct CoarsenStats {
   std::vector<PassStats> passes;
 };
 
-// The absolute distance bound the options give for s's input.
-double absolute_epsilon(const Shell& s, const CoarsenOptions& options);
-
 // Coarsens s in place. `fit` defaults to the linear middle. A curved fit of
 // degree k starts from s's middle nodes when they have degree k, else from
 // the flat triangles (set_flat_middle); s ends with its fitted nodes.

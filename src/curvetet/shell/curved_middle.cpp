@@ -95,14 +95,14 @@ void add_samples(const Shell& s, const StarCandidate& c, PatchFitProblem& p) {
 
 } // namespace
 
-CurvedMiddleFit::CurvedMiddleFit(int degree, double epsilon) : degree_(degree), epsilon_(epsilon) {
+CurvedMiddleFit::CurvedMiddleFit(int degree) : degree_(degree) {
   if (degree < 2 || degree > 7) throw Error(ExitCode::usage, "the curved middle degree must be in 2..7 (order 3..8)");
   // A rejected fit only costs a coarser result; keep the budget small.
   certificate_.max_pieces = 200;
   certificate_.max_depth = 10;
 }
 
-bool CurvedMiddleFit::fit_and_check(const ShellEditor& editor, StarCandidate& c) const {
+bool CurvedMiddleFit::fit_and_check(const ShellEditor& editor, StarCandidate& c, double epsilon) const {
   const Shell& s = editor.shell();
   if (s.middle_degree != degree_ || s.middle_nodes.size() != s.faces.size())
     throw Error(ExitCode::internal, "curved middle fit: the shell's middle nodes are not of the fitted degree");
@@ -121,7 +121,7 @@ bool CurvedMiddleFit::fit_and_check(const ShellEditor& editor, StarCandidate& c)
   auto within_epsilon = [&](const std::vector<std::vector<Vec3>>& nodes) {
     for (const auto& im : c.images) {
       const Vec3 x = highorder::triangle_point(degree_, nodes[im.local].data(), Eigen::Vector2d(im.u, im.v));
-      if (!((x - s.points[im.point].position).norm() < epsilon_)) return false;
+      if (!((x - s.points[im.point].position).norm() < epsilon)) return false;
     }
     return true;
   };

@@ -25,7 +25,6 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
-#include <limits>
 
 namespace curvetet::shell {
 
@@ -39,17 +38,15 @@ struct CurvedFitStats {
 
 class CurvedMiddleFit final : public MiddleFit {
  public:
-  // degree k in 2..7. epsilon (absolute): a fit that misses it at a
-  // constraint point is replaced by the flat alternative (see above).
-  explicit CurvedMiddleFit(int degree, double epsilon = std::numeric_limits<double>::infinity());
+  // degree k in 2..7.
+  explicit CurvedMiddleFit(int degree);
   int degree() const override { return degree_; }
-  bool fit_and_check(const ShellEditor& editor, StarCandidate& c) const override;
+  bool fit_and_check(const ShellEditor& editor, StarCandidate& c, double epsilon) const override;
   Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const override;
   CurvedFitStats stats() const;
 
  private:
   int degree_;
-  double epsilon_;
   highorder::CertificateOptions certificate_;
   mutable std::atomic<long long> fits_{0}, rejected_{0}, fit_ns_{0}, certificate_ns_{0};
 };

@@ -20,9 +20,11 @@ class MiddleFit {
   virtual ~MiddleFit() = default;
   // Degree of the middle triangles (Shell::middle_degree); 1 = flat.
   virtual int degree() const = 0;
-  // Fits the middle of c's new triangles (c.geoms, c.tracked are filled) and
-  // checks the result (curved positivity). false = reject (curved_fit).
-  virtual bool fit_and_check(const ShellEditor& editor, StarCandidate& c) const = 0;
+  // Fits the middle of c's new triangles (c.geoms, c.tracked, c.images are
+  // filled) and checks the result (curved positivity). `epsilon` is the bound
+  // the Distance invariant applies next, so a fit may prefer an alternative
+  // that meets it. false = reject (curved_fit).
+  virtual bool fit_and_check(const ShellEditor& editor, StarCandidate& c, double epsilon) const = 0;
   // The point of new prism k's middle surface at parameters (u, v).
   virtual Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const = 0;
 };
@@ -30,7 +32,7 @@ class MiddleFit {
 class LinearMiddle final : public MiddleFit {
  public:
   int degree() const override { return 1; }
-  bool fit_and_check(const ShellEditor&, StarCandidate&) const override { return true; }
+  bool fit_and_check(const ShellEditor&, StarCandidate&, double) const override { return true; }
   Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const override {
     const auto& m = c.geoms[k].middle;
     return (1 - u - v) * m[0] + u * m[1] + v * m[2];

@@ -258,7 +258,7 @@ class CapsIntersection final : public StarInvariant {
 class CurvedFit final : public StarInvariant {
  public:
   Rejection reason() const override { return Rejection::curved_fit; }
-  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override { return ctx.fit.fit_and_check(ctx.editor, c); }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override { return ctx.fit.fit_and_check(ctx.editor, c, ctx.epsilon); }
 };
 
 // Π of every constraint point of the removed prisms under the new prisms
