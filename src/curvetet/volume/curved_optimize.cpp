@@ -1,5 +1,6 @@
 #include "curvetet/volume/curved_optimize.hpp"
 
+#include "curvetet/highorder/amips_frames.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/jacobian_certificate.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
@@ -28,7 +29,8 @@ struct Move {
 
 class CurvedOptimizer {
  public:
-  CurvedOptimizer(mesh::TetMesh& m, const CurvedOptimizeOptions& o) : m_(m), o_(o), np_(m.tet_nodes()) {
+  CurvedOptimizer(mesh::TetMesh& m, const CurvedOptimizeOptions& o)
+      : m_(m), o_(o), np_(m.tet_nodes()), table_(highorder::amips_frames(m.order)), q_(table_.num_points()) {
     const int n = static_cast<int>(m.nodes.size());
     frozen_.assign(n, 0);
     for (int id : m.boundary) frozen_[id] = 1;
@@ -45,12 +47,10 @@ class CurvedOptimizer {
         uses_[fill[id]++] = {t, i};
       }
     for (int i = 0; i < np_; ++i) barycentric_.push_back(highorder::tet_node_barycentric(m.order, i));
+    weight_.assign(n, 0);
     amips_.assign(m.num_tets(), 0);
-    refresh_all();
-  }
-
-  void refresh_all() {
-    tbb::parallel_for(0, m_.num_tets(), [&](int t) { amips_[t] = tet_amips(t); });
+    frames_.resize(static_cast<std::size_t>(m.num_tets()) * q_);
+    tbb::parallel_for(0, m_.num_tets(), [&](int t) { refresh(t); });
   }
 
   const std::vector<double>& amips() const { return amips_; }
@@ -98,17 +98,13 @@ class CurvedOptimizer {
     return true;
   }
 
-  // Max AMIPS of tet t (one evaluation when straight).
-  double tet_amips(int t, double bound = std::numeric_limits<double>::infinity()) const {
-    const int* ids = m_.tet(t);
-    if (straight(t)) {
-      Eigen::Matrix3d j;
-      j << m_.nodes[ids[1]] - m_.nodes[ids[0]], m_.nodes[ids[2]] - m_.nodes[ids[0]], m_.nodes[ids[3]] - m_.nodes[ids[0]];
-      return highorder::amips(j);
-    }
+  // Frames and max AMIPS of tet t from its nodes.
+  void refresh(int t) {
     Vec3 nodes[165]; // order <= 8
-    for (int i = 0; i < np_; ++i) nodes[i] = m_.nodes[ids[i]];
-    return highorder::tet_max_amips(m_.order, nodes, bound);
+    for (int i = 0; i < np_; ++i) nodes[i] = m_.nodes[m_.tet(t)[i]];
+    Eigen::Matrix3d* k = &frames_[static_cast<std::size_t>(t) * q_];
+    table_.frames(nodes, k);
+    amips_[t] = table_.max_amips(k, nullptr, Vec3::Zero());
   }
 
   bool certified(int t) const {
@@ -175,12 +171,26 @@ class CurvedOptimizer {
     return mv;
   }
 
-  // Max AMIPS over `tets`; stops early (returning a value >= bound) once a
+  // Rank-one directions of the move in every touched tet (AmipsFrames):
+  // directions_[k * q_ + q] for tet mv.tets[k].
+  void set_directions(const Move& mv) {
+    directions_.assign(mv.tets.size() * q_, Vec3::Zero());
+    for (const auto& [id, w] : mv.nodes) weight_[id] = w;
+    for (std::size_t k = 0; k < mv.tets.size(); ++k)
+      for (int i = 0; i < np_; ++i)
+        if (const double w = weight_[m_.tet(mv.tets[k])[i]]; w != 0) table_.add_direction(i, w, &directions_[k * q_]);
+    for (const auto& [id, w] : mv.nodes) weight_[id] = 0;
+  }
+
+  // Max AMIPS of the touched tets mv.tets[k], k in `which`, were the move's
+  // nodes displaced by d; stops early (returning a value >= bound) once a
   // tet reaches `bound`.
-  double objective(const std::vector<int>& tets, double bound = std::numeric_limits<double>::infinity()) const {
+  double trial(const Move& mv, const std::vector<int>& which, const Vec3& d,
+               double bound = std::numeric_limits<double>::infinity()) const {
     double worst = 0;
-    for (int t : tets) {
-      worst = std::max(worst, tet_amips(t, bound));
+    for (int k : which) {
+      const auto t = static_cast<std::size_t>(mv.tets[k]);
+      worst = std::max(worst, table_.max_amips(&frames_[t * q_], &directions_[k * q_], d, bound));
       if (worst >= bound) break;
     }
     return worst;
@@ -200,54 +210,50 @@ class CurvedOptimizer {
   }
 
   bool try_move(const Move& mv, CurvedOptimizeStats& stats) {
-    std::vector<Vec3> saved;
-    for (const auto& [id, w] : mv.nodes) saved.push_back(m_.nodes[id]);
     double f0 = 0;
     for (int t : mv.tets) f0 = std::max(f0, amips_[t]);
     const double h = edge_scale(mv);
     if (!(h > 0) || !std::isfinite(f0)) return false;
+    set_directions(mv);
 
     // Touched tets worst first; the ones near the max decide the direction.
-    std::vector<int> order = mv.tets, active;
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return amips_[a] > amips_[b]; });
-    for (int t : order)
-      if (amips_[t] >= 0.5 * f0) active.push_back(t);
+    std::vector<int> order(mv.tets.size()), active;
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return amips_[mv.tets[a]] > amips_[mv.tets[b]]; });
+    for (int k : order)
+      if (amips_[mv.tets[k]] >= 0.5 * f0) active.push_back(k);
 
     // Descent direction of the max AMIPS, central differences.
     const double fd = 1e-5 * h;
     Vec3 g = Vec3::Zero();
     for (int a = 0; a < 3; ++a) {
-      Vec3 e = Vec3::Zero();
-      e[a] = fd;
-      place(mv, saved, e);
-      const double plus = objective(active);
-      place(mv, saved, -e);
-      const double minus = objective(active);
+      const Vec3 e = fd * Vec3::Unit(a);
+      const double plus = trial(mv, active, e), minus = trial(mv, active, -e);
       if (std::isfinite(plus) && std::isfinite(minus)) g[a] = (plus - minus) / (2 * fd);
     }
-    place(mv, saved, Vec3::Zero());
     if (!(g.norm() > 0)) {
       ++stats.rejected_quality;
       return false;
     }
     const Vec3 dir = -g.normalized();
 
+    std::vector<Vec3> saved;
+    for (const auto& [id, w] : mv.nodes) saved.push_back(m_.nodes[id]);
     bool certificate_failed = false;
     double step = 0.25 * h;
     for (int s = 0; s < o_.line_search_steps; ++s, step *= 0.5) {
-      place(mv, saved, step * dir);
       const double bound = f0 * (1 - 1e-6);
-      if (!(objective(order, bound) < bound)) continue;
+      if (!(trial(mv, order, step * dir, bound) < bound)) continue;
+      place(mv, saved, step * dir);
       bool ok = true;
-      for (int t : order) ok = ok && certified(t);
-      if (!ok) {
-        certificate_failed = true;
-        continue;
+      for (int t : mv.tets) ok = ok && certified(t);
+      if (ok) {
+        for (int t : mv.tets) refresh(t);
+        return true;
       }
-      for (int t : order) amips_[t] = tet_amips(t);
-      return true;
+      certificate_failed = true;
+      place(mv, saved, Vec3::Zero()); // saved + 0 * d: bit-exact restore
     }
-    place(mv, saved, Vec3::Zero()); // saved + 0 * d: bit-exact restore
     ++(certificate_failed ? stats.rejected_certificate : stats.rejected_quality);
     return false;
   }
@@ -258,8 +264,13 @@ class CurvedOptimizer {
   std::vector<char> frozen_; // nodes of listed boundary triangles
   std::vector<int> offset_;
   std::vector<std::pair<int, int>> uses_;
-  std::vector<double> amips_;
   std::vector<std::array<double, 4>> barycentric_; // of each local node
+  const highorder::AmipsFrames& table_;
+  const int q_; // quadrature points per tet
+  std::vector<Eigen::Matrix3d> frames_; // q_ per tet
+  std::vector<double> amips_;           // max AMIPS per tet, from its frames
+  std::vector<double> weight_;          // scratch: weight of each node in the current move
+  std::vector<Vec3> directions_;        // the current move's rank-one directions
 };
 
 struct Summary {

@@ -1,0 +1,77 @@
+// AmipsFrames: the frame form of AMIPS gives tet_quality's max AMIPS, and a
+// rank-one update equals recomputing the frames from moved nodes.
+#include "curvetet/highorder/amips_frames.hpp"
+#include "curvetet/highorder/conforming_nodes.hpp"
+#include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/highorder/quality.hpp"
+
+#include "element_fixtures.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace curvetet::highorder;
+using namespace curvetet::highorder::testing;
+
+namespace {
+
+double frames_max_amips(int order, const std::vector<Eigen::Vector3d>& nodes) {
+  const AmipsFrames& f = amips_frames(order);
+  std::vector<Eigen::Matrix3d> k(f.num_points());
+  f.frames(nodes.data(), k.data());
+  return f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero());
+}
+
+} // namespace
+
+TEST(AmipsFrames, MatchesTetQuality) {
+  for (int p = 1; p <= 5; ++p) {
+    const auto nodes = mapped_tet(p, unit_tet(), gentle_bend);
+    const double expected = tet_quality(p, nodes.data()).max_amips;
+    EXPECT_NEAR(frames_max_amips(p, nodes), expected, 1e-12 * expected) << "order " << p;
+  }
+}
+
+TEST(AmipsFrames, RankOneUpdateEqualsRecomputedFrames) {
+  const int p = 4;
+  const AmipsFrames& f = amips_frames(p);
+  const auto nodes = mapped_tet(p, unit_tet(), gentle_bend);
+  std::vector<Eigen::Matrix3d> k(f.num_points());
+  f.frames(nodes.data(), k.data());
+  const Eigen::Vector3d d(0.03, -0.02, 0.05);
+
+  // One high-order node, then a corner with its star's barycentric weights.
+  for (int local : {7, 20, 34}) {
+    std::vector<Eigen::Vector3d> c(f.num_points(), Eigen::Vector3d::Zero());
+    f.add_direction(local, 1.0, c.data());
+    auto moved = nodes;
+    moved[local] += d;
+    EXPECT_NEAR(f.max_amips(k.data(), c.data(), d), frames_max_amips(p, moved), 1e-10) << "node " << local;
+  }
+  std::vector<Eigen::Vector3d> c(f.num_points(), Eigen::Vector3d::Zero());
+  auto moved = nodes;
+  for (int i = 0; i < f.num_nodes(); ++i) {
+    const double w = tet_node_barycentric(p, i)[2];
+    if (w == 0) continue;
+    f.add_direction(i, w, c.data());
+    moved[i] += w * d;
+  }
+  EXPECT_NEAR(f.max_amips(k.data(), c.data(), d), frames_max_amips(p, moved), 1e-10);
+}
+
+TEST(AmipsFrames, InvertedIsInfiniteAndBoundStopsEarly) {
+  const int p = 3;
+  const AmipsFrames& f = amips_frames(p);
+  auto v = unit_tet();
+  std::swap(v[0], v[1]);
+  const auto inverted = straight_tet(p, v);
+  EXPECT_TRUE(std::isinf(frames_max_amips(p, inverted)));
+
+  const auto nodes = mapped_tet(p, unit_tet(), gentle_bend);
+  std::vector<Eigen::Matrix3d> k(f.num_points());
+  f.frames(nodes.data(), k.data());
+  const double full = f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero());
+  EXPECT_GE(f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero(), 1.0), 1.0);
+  EXPECT_EQ(f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero(), 2 * full), full);
+}
