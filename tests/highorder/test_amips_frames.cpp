@@ -1,5 +1,6 @@
-// AmipsFrames: the frame form of AMIPS gives tet_quality's max AMIPS, and a
-// rank-one update equals recomputing the frames from moved nodes.
+// AmipsFrames: the frame form gives tet_quality's max AMIPS and min scaled
+// Jacobian, and a rank-one update equals recomputing the frames from moved
+// nodes.
 #include "curvetet/highorder/amips_frames.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
@@ -28,8 +29,13 @@ double frames_max_amips(int order, const std::vector<Eigen::Vector3d>& nodes) {
 TEST(AmipsFrames, MatchesTetQuality) {
   for (int p = 1; p <= 5; ++p) {
     const auto nodes = mapped_tet(p, unit_tet(), gentle_bend);
-    const double expected = tet_quality(p, nodes.data()).max_amips;
-    EXPECT_NEAR(frames_max_amips(p, nodes), expected, 1e-12 * expected) << "order " << p;
+    const TetQuality expected = tet_quality(p, nodes.data());
+    EXPECT_NEAR(frames_max_amips(p, nodes), expected.max_amips, 1e-12 * expected.max_amips) << "order " << p;
+    const AmipsFrames& f = amips_frames(p);
+    std::vector<Eigen::Matrix3d> k(f.num_points());
+    f.frames(nodes.data(), k.data());
+    EXPECT_NEAR(f.min_scaled_jacobian(k.data(), nullptr, Eigen::Vector3d::Zero()), expected.min_scaled_jacobian, 1e-12)
+        << "order " << p;
   }
 }
 
@@ -48,6 +54,7 @@ TEST(AmipsFrames, RankOneUpdateEqualsRecomputedFrames) {
     auto moved = nodes;
     moved[local] += d;
     EXPECT_NEAR(f.max_amips(k.data(), c.data(), d), frames_max_amips(p, moved), 1e-10) << "node " << local;
+    EXPECT_NEAR(f.min_scaled_jacobian(k.data(), c.data(), d), tet_quality(p, moved.data()).min_scaled_jacobian, 1e-10);
   }
   std::vector<Eigen::Vector3d> c(f.num_points(), Eigen::Vector3d::Zero());
   auto moved = nodes;

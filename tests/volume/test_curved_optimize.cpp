@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 using namespace curvetet;
 using mesh::Vec3;
 
@@ -105,4 +107,29 @@ TEST(CurvedOptimize, UnlistedHullStaysPutToo) {
   const auto stats = volume::optimize_curved(m, o);
   EXPECT_GT(stats.vertex_moves + stats.node_moves, 0);
   for (int id : listed) EXPECT_EQ(m.nodes[id], before[id]) << "node " << id;
+}
+
+TEST(CurvedOptimize, ScaledJacobianSweepRaisesTheMinWithoutRaisingTheMaxAmips) {
+  auto m = bad_mesh(4);
+  volume::CurvedOptimizeOptions o;
+  o.min_amips = std::numeric_limits<double>::infinity(); // no AMIPS sweep: only the scaled-Jacobian one
+  o.min_scaled_jacobian = 0.5;
+  const auto stats = volume::optimize_curved(m, o);
+  EXPECT_GT(stats.scaled_jacobian_moves, 0);
+  EXPECT_EQ(stats.scaled_jacobian_moves, stats.vertex_moves + stats.node_moves);
+  EXPECT_GT(stats.min_scaled_jacobian_after, 1.5 * stats.min_scaled_jacobian_before)
+      << stats.min_scaled_jacobian_before << " -> " << stats.min_scaled_jacobian_after;
+  EXPECT_LE(stats.max_amips_after, stats.max_amips_before * (1 + 1e-9));
+  const auto v = check::verify_tet_mesh(m);
+  EXPECT_TRUE(v.ok()) << v.text();
+}
+
+TEST(CurvedOptimize, FrameCacheSizeDoesNotChangeTheResult) {
+  auto a = bad_mesh(4), b = a;
+  volume::CurvedOptimizeOptions o;
+  o.bad_fraction = 1.0;
+  volume::optimize_curved(a, o);
+  o.frame_cache_bytes = 0; // the smallest cache: released and refilled all along
+  volume::optimize_curved(b, o);
+  EXPECT_EQ(a.nodes, b.nodes);
 }

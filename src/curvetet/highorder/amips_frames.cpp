@@ -3,6 +3,7 @@
 #include "curvetet/highorder/bernstein.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/highorder/quadrature.hpp"
+#include "curvetet/highorder/quality.hpp"
 
 #include <Eigen/Dense>
 
@@ -16,39 +17,39 @@ namespace curvetet::highorder {
 AmipsFrames::AmipsFrames(int order) {
   if (order < 1 || order > kMaxOrder) throw std::invalid_argument("AmipsFrames: order must be 1..8");
   // W: reference tet -> regular tet of unit edge (columns = its edge vectors).
-  Eigen::Matrix3d w;
-  w.col(0) << 1, 0, 0;
-  w.col(1) << 0.5, std::sqrt(3.0) / 2, 0;
-  w.col(2) << 0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0);
-  const Eigen::Matrix3d w_inv = w.inverse();
-  const Quadrature rule = tet_quadrature(order + 1);
-  points_ = static_cast<int>(rule.points.size());
+  w_.col(0) << 1, 0, 0;
+  w_.col(1) << 0.5, std::sqrt(3.0) / 2, 0;
+  w_.col(2) << 0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0);
+  const Eigen::Matrix3d w_inv = w_.inverse();
   nodes_ = tet_node_count(order);
-  h_.reserve(static_cast<std::size_t>(points_) * nodes_);
-  for (const auto& xi : rule.points) {
-    const Eigen::MatrixXd g = lagrange_gradients(3, order, xi.data()) * w_inv; // row l = h_{l,q}^T
-    for (int l = 0; l < nodes_; ++l) h_.push_back(g.row(l).transpose());
+  std::vector<Eigen::Vector3d> xis;
+  for (int i = 0; i < nodes_; ++i) {
+    const auto p = tet_node(order, i);
+    xis.emplace_back(double(p[0]) / order, double(p[1]) / order, double(p[2]) / order);
   }
+  for (const auto& xi : tet_quadrature(order + 1).points) xis.push_back(xi);
+  points_ = static_cast<int>(xis.size());
+  h_.resize(nodes_, 3 * points_);
+  for (int q = 0; q < points_; ++q) h_.middleCols<3>(3 * q) = lagrange_gradients(3, order, xis[q].data()) * w_inv;
 }
 
 void AmipsFrames::frames(const Eigen::Vector3d* nodes, Eigen::Matrix3d* frames) const {
-  for (int q = 0; q < points_; ++q) {
-    const Eigen::Vector3d* h = &h_[static_cast<std::size_t>(q) * nodes_];
-    Eigen::Matrix3d k = Eigen::Matrix3d::Zero();
-    for (int l = 0; l < nodes_; ++l) k.noalias() += nodes[l] * h[l].transpose();
-    frames[q] = k;
-  }
+  // All frames at once: [K_0 K_1 ...] = X H, X = [x_0 ... x_n-1] (3 x n);
+  // an array of column-major Matrix3d is that 3 x 3P column-major matrix.
+  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> x(nodes[0].data(), 3, nodes_);
+  Eigen::Map<Eigen::Matrix<double, 3, Eigen::Dynamic>> k(frames[0].data(), 3, 3 * points_);
+  k.noalias() = x * h_;
 }
 
 void AmipsFrames::add_direction(int local, double w, Eigen::Vector3d* c) const {
-  for (int q = 0; q < points_; ++q) c[q] += w * h_[static_cast<std::size_t>(q) * nodes_ + local];
+  for (int q = 0; q < points_; ++q) c[q] += w * h_.row(local).segment<3>(3 * q).transpose();
 }
 
 double AmipsFrames::max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,
                               double bound) const {
   const double bound_cubed = bound * bound * bound;
   double worst_cubed = 0;
-  for (int q = 0; q < points_ && worst_cubed < bound_cubed; ++q) {
+  for (int q = nodes_; q < points_ && worst_cubed < bound_cubed; ++q) {
     Eigen::Matrix3d k = frames[q];
     if (c) k.noalias() += d * c[q].transpose();
     const double det = k.determinant();
@@ -57,6 +58,17 @@ double AmipsFrames::max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector
     worst_cubed = std::max(worst_cubed, n2 * n2 * n2 / (27 * det * det));
   }
   return std::cbrt(worst_cubed);
+}
+
+double AmipsFrames::min_scaled_jacobian(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c,
+                                        const Eigen::Vector3d& d, double floor) const {
+  double worst = std::numeric_limits<double>::infinity();
+  for (int q = 0; q < points_ && !(worst < floor); ++q) {
+    Eigen::Matrix3d k = frames[q];
+    if (c) k.noalias() += d * c[q].transpose();
+    worst = std::min(worst, scaled_jacobian(k * w_));
+  }
+  return worst;
 }
 
 const AmipsFrames& amips_frames(int order) {

@@ -1,15 +1,16 @@
 #pragma once
-// AMIPS of an order-P tet at the quadrature points of tet_quality, kept as
-// frames so that the optimizer can try node moves without recomputing the
-// Jacobians.
+// Quality of an order-P tet at the sample points of tet_quality (first its
+// Lagrange nodes, then its quadrature points), kept as frames so that the
+// optimizer can try node moves without recomputing the Jacobians.
 //
 // Frame q of a tet with nodes x_l: K_q = J(xi_q) W^-1 = sum_l x_l h_{l,q}^T,
 // h_{l,q} = W^-T grad phi_l(xi_q) (W as in quality.hpp). Moving node l by
 // w_l d changes every frame by the rank-one term d c_q^T with
 // c_q = sum_l w_l h_{l,q}, so a trial move costs one 3x3 update per point
 // instead of a sum over all nodes. AMIPS(K) = |K|_F^2 / (3 det(K)^(2/3))
-// (+inf when det K <= 0); the max over points is taken on AMIPS^3, which
-// needs no cube root per point and has the same maximiser.
+// (+inf when det K <= 0), max over the quadrature points, taken on AMIPS^3,
+// which needs no cube root per point and has the same maximiser. The scaled
+// Jacobian (quality.hpp) of J = K W, min over all points.
 #include <Eigen/Core>
 
 #include <limits>
@@ -20,7 +21,7 @@ namespace curvetet::highorder {
 class AmipsFrames {
  public:
   explicit AmipsFrames(int order); // 1..8
-  int num_points() const { return points_; }
+  int num_points() const { return points_; } // nodes, then quadrature points
   int num_nodes() const { return nodes_; }
 
   // frames[q] = K_q for q < num_points(); nodes in internal (Gmsh) order.
@@ -28,14 +29,19 @@ class AmipsFrames {
   // c[q] += w h_{local,q} for every point q.
   void add_direction(int local, double w, Eigen::Vector3d* c) const;
 
-  // Max over points of AMIPS(K_q + d c_q^T) (c == nullptr: of K_q). Stops at
-  // the first point reaching `bound` (the result is then >= bound).
+  // Max over quadrature points of AMIPS(K_q + d c_q^T) (c == nullptr: of
+  // K_q). Stops at the first point reaching `bound` (the result is then >= bound).
   double max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,
                    double bound = std::numeric_limits<double>::infinity()) const;
+  // Min over all points of the scaled Jacobian of (K_q + d c_q^T) W. Stops
+  // at the first point below `floor` (the result is then < floor).
+  double min_scaled_jacobian(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,
+                             double floor = -std::numeric_limits<double>::infinity()) const;
 
  private:
   int points_ = 0, nodes_ = 0;
-  std::vector<Eigen::Vector3d> h_; // h_[q * nodes_ + l]
+  Eigen::Matrix3d w_;  // reference tet -> regular tet
+  Eigen::MatrixXd h_;  // nodes_ x (3 points_): row l, columns 3q..3q+2 = h_{l,q}^T
 };
 
 // One table per order, built on first use (thread-safe).

@@ -65,12 +65,14 @@ const TetSamples& tet_samples(int order) {
 double scaled_jacobian(const Eigen::Matrix3d& j) {
   const double det = j.determinant();
   const Eigen::Vector3d a = j.col(0), b = j.col(1), c = j.col(2);
-  // Edge derivatives leaving each corner of the reference tet.
-  const Eigen::Vector3d frames[4][3] = {{a, b, c}, {-a, b - a, c - a}, {-b, a - b, c - b}, {-c, a - c, b - c}};
+  // Squared lengths of the six edge derivatives; each corner of the
+  // reference tet uses the three edges leaving it.
+  const double aa = a.squaredNorm(), bb = b.squaredNorm(), cc = c.squaredNorm();
+  const double ab = (b - a).squaredNorm(), ac = (c - a).squaredNorm(), bc = (c - b).squaredNorm();
+  const double frames[4] = {aa * bb * cc, aa * ab * ac, bb * ab * bc, cc * ac * bc};
   double best = std::numeric_limits<double>::infinity();
-  for (const auto& f : frames) {
-    const double len = f[0].norm() * f[1].norm() * f[2].norm();
-    const double s = len > 0 ? std::sqrt(2.0) * det / len : (det > 0 ? 1.0 : -1.0);
+  for (double f : frames) {
+    const double s = f > 0 ? std::sqrt(2.0) * det / std::sqrt(f) : (det > 0 ? 1.0 : -1.0);
     best = std::min(best, s);
   }
   return best;

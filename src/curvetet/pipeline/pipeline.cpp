@@ -145,10 +145,13 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
         {"min_scaled_jacobian_before", st.min_scaled_jacobian_before},
         {"min_scaled_jacobian_after", st.min_scaled_jacobian_after},
         {"vertex_moves", st.vertex_moves},           {"node_moves", st.node_moves},
+        {"scaled_jacobian_moves", st.scaled_jacobian_moves},
         {"rejected_quality", st.rejected_quality},   {"rejected_certificate", st.rejected_certificate},
         {"passes", st.passes}};
-    logger().info("curved optimization: max AMIPS {:.4g} -> {:.4g}, {} vertex and {} node moves", st.max_amips_before,
-                  st.max_amips_after, st.vertex_moves, st.node_moves);
+    logger().info("curved optimization: max AMIPS {:.4g} -> {:.4g}, min scaled Jacobian {:.3g} -> {:.3g}, "
+                  "{} vertex and {} node moves",
+                  st.max_amips_before, st.max_amips_after, st.min_scaled_jacobian_before,
+                  st.min_scaled_jacobian_after, st.vertex_moves, st.node_moves);
   }
 
   {

@@ -1,10 +1,12 @@
 #include "curvetet/volume/curved_optimize.hpp"
 
+#include "curvetet/core/log.hpp"
 #include "curvetet/highorder/amips_frames.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/jacobian_certificate.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/highorder/quality.hpp"
+#include "curvetet/volume/frame_cache.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -27,10 +29,15 @@ struct Move {
   std::vector<int> tets;
 };
 
+// What a sweep improves: the max AMIPS of the touched tets, or their min
+// scaled Jacobian (kept from getting worse by the other goal's moves).
+enum class Goal { amips, scaled_jacobian };
+
 class CurvedOptimizer {
  public:
   CurvedOptimizer(mesh::TetMesh& m, const CurvedOptimizeOptions& o)
-      : m_(m), o_(o), np_(m.tet_nodes()), table_(highorder::amips_frames(m.order)), q_(table_.num_points()) {
+      : m_(m), o_(o), np_(m.tet_nodes()), table_(highorder::amips_frames(m.order)), q_(table_.num_points()),
+        cache_(m.num_tets(), q_, o.frame_cache_bytes) {
     const int n = static_cast<int>(m.nodes.size());
     frozen_.assign(n, 0);
     for (int id : m.boundary) frozen_[id] = 1;
@@ -48,22 +55,39 @@ class CurvedOptimizer {
       }
     for (int i = 0; i < np_; ++i) barycentric_.push_back(highorder::tet_node_barycentric(m.order, i));
     weight_.assign(n, 0);
+    for (auto& f : failed_at_) f.assign(n, -1);
+    changed_at_.assign(m.num_tets(), 0);
     amips_.assign(m.num_tets(), 0);
-    frames_.resize(static_cast<std::size_t>(m.num_tets()) * q_);
-    tbb::parallel_for(0, m_.num_tets(), [&](int t) { refresh(t); });
+    sj_.assign(m.num_tets(), 0);
+    // The first tets that fit are cached right away (slots in tet order).
+    const int cached = std::min(m.num_tets(), cache_.capacity());
+    cache_.reserve(cached);
+    for (int t = 0; t < cached; ++t) cache_.slot(t);
+    tbb::parallel_for(0, m_.num_tets(), [&](int t) {
+      std::vector<Eigen::Matrix3d> scratch;
+      if (t >= cached) scratch.resize(q_);
+      evaluate(t, t < cached ? cache_.slot(t) : scratch.data());
+    });
   }
 
   const std::vector<double>& amips() const { return amips_; }
+  const std::vector<double>& scaled_jacobians() const { return sj_; }
 
-  // One sweep over the tets at or above the threshold, worst first.
-  void sweep(double threshold, CurvedOptimizeStats& stats) {
+  // One sweep over the bad tets, worst first: max AMIPS >= threshold, or
+  // min scaled Jacobian below options.min_scaled_jacobian.
+  void sweep(Goal goal, double threshold, CurvedOptimizeStats& stats) {
+    const auto is_bad = [&](int t) {
+      return goal == Goal::amips ? amips_[t] >= threshold : sj_[t] < o_.min_scaled_jacobian;
+    };
+    const auto badness = [&](int t) { return goal == Goal::amips ? amips_[t] : -sj_[t]; };
+    sweep_max_amips_ = *std::max_element(amips_.begin(), amips_.end());
     std::vector<int> bad;
     for (int t = 0; t < m_.num_tets(); ++t)
-      if (amips_[t] >= threshold) bad.push_back(t);
-    std::stable_sort(bad.begin(), bad.end(), [&](int a, int b) { return amips_[a] > amips_[b]; });
+      if (is_bad(t)) bad.push_back(t);
+    std::stable_sort(bad.begin(), bad.end(), [&](int a, int b) { return badness(a) > badness(b); });
     std::vector<char> tried(m_.nodes.size(), 0);
     for (int t : bad) {
-      if (amips_[t] < threshold) continue; // improved by an earlier move
+      if (!is_bad(t)) continue; // improved by an earlier move
       for (int i = 0; i < np_; ++i) {
         const int id = m_.tet(t)[i];
         if (frozen_[id] || tried[id]) continue;
@@ -77,7 +101,20 @@ class CurvedOptimizer {
         // max AMIPS rises (a dip of the max sampled at quadrature points is
         // an artefact): only try when the worst touched tet is curved.
         if (!is_corner && straight(worst_of(mv.tets))) continue;
-        if (try_move(mv, stats)) ++(is_corner ? stats.vertex_moves : stats.node_moves);
+        // A move depends only on its touched tets: if none changed since it
+        // last failed for this goal, it would fail again.
+        long& failed = failed_at_[static_cast<int>(goal)][id];
+        long last_change = -1;
+        for (int tt : mv.tets) last_change = std::max(last_change, changed_at_[tt]);
+        if (last_change <= failed) continue;
+        if (!try_move(mv, goal, stats)) {
+          failed = clock_;
+          continue;
+        }
+        ++clock_;
+        for (int tt : mv.tets) changed_at_[tt] = clock_;
+        ++(is_corner ? stats.vertex_moves : stats.node_moves);
+        if (goal == Goal::scaled_jacobian) ++stats.scaled_jacobian_moves;
       }
     }
   }
@@ -98,13 +135,18 @@ class CurvedOptimizer {
     return true;
   }
 
-  // Frames and max AMIPS of tet t from its nodes.
-  void refresh(int t) {
+  // Frames of tet t from its nodes, into k[0, q_).
+  void frames(int t, Eigen::Matrix3d* k) const {
     Vec3 nodes[165]; // order <= 8
     for (int i = 0; i < np_; ++i) nodes[i] = m_.nodes[m_.tet(t)[i]];
-    Eigen::Matrix3d* k = &frames_[static_cast<std::size_t>(t) * q_];
     table_.frames(nodes, k);
+  }
+
+  // Refreshes amips_[t] and sj_[t] from tet t's nodes, using k as scratch.
+  void evaluate(int t, Eigen::Matrix3d* k) {
+    frames(t, k);
     amips_[t] = table_.max_amips(k, nullptr, Vec3::Zero());
+    sj_[t] = table_.min_scaled_jacobian(k, nullptr, Vec3::Zero());
   }
 
   bool certified(int t) const {
@@ -171,9 +213,17 @@ class CurvedOptimizer {
     return mv;
   }
 
-  // Rank-one directions of the move in every touched tet (AmipsFrames):
-  // directions_[k * q_ + q] for tet mv.tets[k].
-  void set_directions(const Move& mv) {
+  // Frames and rank-one directions of the move in every touched tet
+  // (AmipsFrames): frames_[k] and directions_[k * q_ + q] for tet mv.tets[k].
+  // Frames come from the cache; every trial step is a cheap rank-one update.
+  void prepare(const Move& mv) {
+    cache_.reserve(static_cast<int>(mv.tets.size()));
+    frames_.clear();
+    for (int t : mv.tets) {
+      const bool was_cached = cache_.cached(t);
+      frames_.push_back(cache_.slot(t));
+      if (!was_cached) frames(t, frames_.back());
+    }
     directions_.assign(mv.tets.size() * q_, Vec3::Zero());
     for (const auto& [id, w] : mv.nodes) weight_[id] = w;
     for (std::size_t k = 0; k < mv.tets.size(); ++k)
@@ -185,13 +235,24 @@ class CurvedOptimizer {
   // Max AMIPS of the touched tets mv.tets[k], k in `which`, were the move's
   // nodes displaced by d; stops early (returning a value >= bound) once a
   // tet reaches `bound`.
-  double trial(const Move& mv, const std::vector<int>& which, const Vec3& d,
-               double bound = std::numeric_limits<double>::infinity()) const {
+  double trial_amips(const std::vector<int>& which, const Vec3& d,
+                     double bound = std::numeric_limits<double>::infinity()) const {
     double worst = 0;
     for (int k : which) {
-      const auto t = static_cast<std::size_t>(mv.tets[k]);
-      worst = std::max(worst, table_.max_amips(&frames_[t * q_], &directions_[k * q_], d, bound));
+      worst = std::max(worst, table_.max_amips(frames_[k], &directions_[k * q_], d, bound));
       if (worst >= bound) break;
+    }
+    return worst;
+  }
+
+  // Min scaled Jacobian of the same tets, were the nodes displaced by d;
+  // stops early (returning a value < floor) once a tet falls below `floor`.
+  double trial_scaled_jacobian(const std::vector<int>& which, const Vec3& d,
+                               double floor = -std::numeric_limits<double>::infinity()) const {
+    double worst = std::numeric_limits<double>::infinity();
+    for (int k : which) {
+      worst = std::min(worst, table_.min_scaled_jacobian(frames_[k], &directions_[k * q_], d, floor));
+      if (worst < floor) break;
     }
     return worst;
   }
@@ -209,26 +270,36 @@ class CurvedOptimizer {
     return h;
   }
 
-  bool try_move(const Move& mv, CurvedOptimizeStats& stats) {
-    double f0 = 0;
-    for (int t : mv.tets) f0 = std::max(f0, amips_[t]);
+  // Tries the move along a descent direction of the goal with halving
+  // steps; keeps the first step that improves the goal without hurting the
+  // other measure and whose touched tets are all certified positive.
+  bool try_move(const Move& mv, Goal goal, CurvedOptimizeStats& stats) {
+    double amips0 = 0, sj0 = std::numeric_limits<double>::infinity();
+    for (int t : mv.tets) {
+      amips0 = std::max(amips0, amips_[t]);
+      sj0 = std::min(sj0, sj_[t]);
+    }
     const double h = edge_scale(mv);
-    if (!(h > 0) || !std::isfinite(f0)) return false;
-    set_directions(mv);
+    if (!(h > 0) || !std::isfinite(amips0)) return false;
+    prepare(mv);
 
-    // Touched tets worst first; the ones near the max decide the direction.
-    std::vector<int> order(mv.tets.size()), active;
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return amips_[mv.tets[a]] > amips_[mv.tets[b]]; });
-    for (int k : order)
-      if (amips_[mv.tets[k]] >= 0.5 * f0) active.push_back(k);
+    // The touched tets that decide the direction: those near the worst.
+    std::vector<int> all(mv.tets.size()), active;
+    std::iota(all.begin(), all.end(), 0);
+    for (int k : all) {
+      const int t = mv.tets[k];
+      if (goal == Goal::amips ? amips_[t] >= 0.5 * amips0 : sj_[t] < o_.min_scaled_jacobian) active.push_back(k);
+    }
+    const auto objective = [&](const Vec3& d) {
+      return goal == Goal::amips ? trial_amips(active, d) : -trial_scaled_jacobian(active, d);
+    };
 
-    // Descent direction of the max AMIPS, central differences.
+    // Descent direction of the objective, central differences.
     const double fd = 1e-5 * h;
     Vec3 g = Vec3::Zero();
     for (int a = 0; a < 3; ++a) {
       const Vec3 e = fd * Vec3::Unit(a);
-      const double plus = trial(mv, active, e), minus = trial(mv, active, -e);
+      const double plus = objective(e), minus = objective(-e);
       if (std::isfinite(plus) && std::isfinite(minus)) g[a] = (plus - minus) / (2 * fd);
     }
     if (!(g.norm() > 0)) {
@@ -237,18 +308,25 @@ class CurvedOptimizer {
     }
     const Vec3 dir = -g.normalized();
 
+    // AMIPS moves must lower the max and may not take a tet below the scaled
+    // Jacobian floor; scaled-Jacobian moves must raise the min and may not
+    // raise the mesh's max AMIPS (as it was when the sweep began).
+    const double amips_bound = goal == Goal::amips ? amips0 * (1 - 1e-6) : sweep_max_amips_;
+    const double sj_floor = goal == Goal::amips ? std::min(sj0, o_.min_scaled_jacobian) : sj0 * (1 + 1e-6);
     std::vector<Vec3> saved;
     for (const auto& [id, w] : mv.nodes) saved.push_back(m_.nodes[id]);
     bool certificate_failed = false;
     double step = 0.25 * h;
     for (int s = 0; s < o_.line_search_steps; ++s, step *= 0.5) {
-      const double bound = f0 * (1 - 1e-6);
-      if (!(trial(mv, order, step * dir, bound) < bound)) continue;
-      place(mv, saved, step * dir);
+      const Vec3 d = step * dir;
+      if (!(trial_amips(all, d, amips_bound) < amips_bound)) continue;
+      const double sj = trial_scaled_jacobian(all, d, sj_floor);
+      if (goal == Goal::amips ? sj < sj_floor : !(sj > sj_floor)) continue;
+      place(mv, saved, d);
       bool ok = true;
       for (int t : mv.tets) ok = ok && certified(t);
       if (ok) {
-        for (int t : mv.tets) refresh(t);
+        for (std::size_t k = 0; k < mv.tets.size(); ++k) evaluate(mv.tets[k], frames_[k]);
         return true;
       }
       certificate_failed = true;
@@ -267,8 +345,14 @@ class CurvedOptimizer {
   std::vector<std::array<double, 4>> barycentric_; // of each local node
   const highorder::AmipsFrames& table_;
   const int q_; // quadrature points per tet
-  std::vector<Eigen::Matrix3d> frames_; // q_ per tet
-  std::vector<double> amips_;           // max AMIPS per tet, from its frames
+  std::vector<double> amips_;           // max AMIPS per tet
+  std::vector<double> sj_;              // min scaled Jacobian per tet
+  FrameCache cache_;
+  double sweep_max_amips_ = 0;
+  long clock_ = 0;                       // accepted moves so far
+  std::vector<long> changed_at_;         // per tet: clock_ of the last move touching it
+  std::array<std::vector<long>, 2> failed_at_; // per goal and node: clock_ when its move last failed
+  std::vector<Eigen::Matrix3d*> frames_; // the current move's touched tets' frames (in cache_)
   std::vector<double> weight_;          // scratch: weight of each node in the current move
   std::vector<Vec3> directions_;        // the current move's rank-one directions
 };
@@ -305,15 +389,23 @@ CurvedOptimizeStats optimize_curved(mesh::TetMesh& m, const CurvedOptimizeOption
   stats.min_scaled_jacobian_before = before.min_scaled_jacobian;
   if (m.num_tets() > 0) {
     CurvedOptimizer opt(m, o);
+    const auto max_amips = [&] { return *std::max_element(opt.amips().begin(), opt.amips().end()); };
+    const auto min_sj = [&] { return *std::min_element(opt.scaled_jacobians().begin(), opt.scaled_jacobians().end()); };
     for (int pass = 0; pass < o.passes; ++pass) {
       std::vector<double> sorted = opt.amips();
       const std::size_t k = std::min(sorted.size() - 1, static_cast<std::size_t>(o.bad_fraction * sorted.size()));
       std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end(), std::greater<>());
       const double threshold = std::max(o.min_amips, sorted[k]);
       const int moves = stats.vertex_moves + stats.node_moves;
-      opt.sweep(threshold, stats);
+      const double amips_before = max_amips(), sj_before = min_sj();
+      opt.sweep(Goal::amips, threshold, stats);
+      opt.sweep(Goal::scaled_jacobian, threshold, stats);
       ++stats.passes;
-      if (stats.vertex_moves + stats.node_moves == moves) break;
+      const double amips_now = max_amips(), sj_now = min_sj();
+      logger().debug("curved optimization pass {}: max AMIPS {:.4g}, min scaled Jacobian {:.3g}, {} moves", pass + 1,
+                     amips_now, sj_now, stats.vertex_moves + stats.node_moves - moves);
+      // Stop once a pass changes neither extreme by more than min_gain.
+      if (amips_now > (1 - o.min_gain) * amips_before && sj_now < (1 + o.min_gain) * sj_before) break;
     }
   }
   const Summary after = summarize(m);

@@ -1,8 +1,9 @@
 #pragma once
 // Curved optimization of the assembled mesh (paper §4.3, end; DESIGN.md §1
 // volume::optimize_curved): smoothing that lowers the max AMIPS of the
-// order-P tets (highorder/quality.hpp: AMIPS at quadrature points) while the
-// boundary stays exactly where it is.
+// order-P tets and raises their min scaled Jacobian (highorder/quality.hpp:
+// AMIPS at quadrature points, scaled Jacobian at nodes and quadrature
+// points) while the boundary stays exactly where it is.
 //
 // Two local moves, each a transaction on the tets it touches:
 //  - vertex move: a corner vertex v not on any listed boundary triangle moves
@@ -12,24 +13,33 @@
 //  - node move: one high-order node (edge, face or interior) not on a listed
 //    boundary triangle moves by d; tried only when the worst tet it touches
 //    is curved (bending a straight tet raises its max AMIPS).
-// d is a descent direction of the touched tets' max AMIPS (central finite
-// differences), tried with halving steps. A move is kept only if the max
-// AMIPS of the touched tets decreases AND highorder::certify_tet says
-// `positive` for every touched tet (undecided = rejected); otherwise the
-// nodes are restored bit for bit. Nodes of listed boundary triangles (the
-// middle surface, and with an exterior the box) and of every tet face used
-// once never move, so the boundary and the map onto it are unchanged. Precondition: every tet certified
-// positive (the assembly's verification); then so is the result.
+// Each pass sweeps the tets of high max AMIPS, then those of low min scaled
+// Jacobian. d is a descent direction of the sweep's goal over the touched
+// tets (central finite differences), tried with halving steps. A move is
+// kept only if it improves the goal without hurting the other measure (see
+// CurvedOptimizeOptions) AND highorder::certify_tet says `positive` for
+// every touched tet (undecided = rejected); otherwise the nodes are restored
+// bit for bit. Nodes of listed boundary triangles (the middle surface, and
+// with an exterior the box) and of every tet face used once never move, so
+// the boundary and the map onto it are unchanged. Precondition: every tet
+// certified positive (the assembly's verification); then so is the result.
 // Deterministic: sequential, tets visited worst first (ties by index).
 #include "curvetet/mesh/tet_mesh.hpp"
+
+#include <cstddef>
 
 namespace curvetet::volume {
 
 struct CurvedOptimizeOptions {
-  int passes = 10;              // sweeps over the bad tets (stops early when one moves nothing)
+  int passes = 10;              // sweeps over the bad tets (stops early when one gains little)
+  double min_gain = 0.01;       // a pass that lowers the max AMIPS and raises the min scaled Jacobian by less
+                                // than this fraction is the last
   double bad_fraction = 0.25;   // a sweep visits tets whose max AMIPS >= this quantile from the top...
   double min_amips = 4.0;       // ...and above this value
+  double min_scaled_jacobian = 0.05; // a sweep also raises tets below this min scaled Jacobian, and no move
+                                     // takes a tet below it (or below its own value when already lower)
   int line_search_steps = 6;    // step halvings per move
+  std::size_t frame_cache_bytes = std::size_t(1) << 30; // memory for cached per-tet frames (speed only)
   bool move_vertices = true;
   bool move_nodes = true;
 };
@@ -38,6 +48,7 @@ struct CurvedOptimizeStats {
   double max_amips_before = 0, mean_amips_before = 0, min_scaled_jacobian_before = 0;
   double max_amips_after = 0, mean_amips_after = 0, min_scaled_jacobian_after = 0;
   int vertex_moves = 0, node_moves = 0;     // accepted
+  int scaled_jacobian_moves = 0;            // of which raised a min scaled Jacobian
   int rejected_quality = 0;                 // no step lowered the max AMIPS
   int rejected_certificate = 0;             // lower AMIPS but a tet not certified positive
   int passes = 0;
