@@ -10,7 +10,10 @@
 #include "curvetet/io/msh.hpp"
 #include "curvetet/io/vtu.hpp"
 #include "curvetet/map/build_map.hpp"
+#include "curvetet/map/transfer.hpp"
 #include "curvetet/pipeline/pipeline.hpp"
+
+#include <Eigen/Geometry>
 
 #include <map>
 #include <memory>
@@ -88,9 +91,18 @@ std::function<int()> add_mesh_options(CLI::App& root) {
           map::MapBuildStats stats;
           const auto bmap = map::build_boundary_map(result.shell, result.mesh, &stats);
           io::write_map(o->map_path, bmap);
-          report["map"] = {{"path", o->map_path},       {"boundary_nodes", stats.nodes},
-                           {"triangles", stats.triangles}, {"node_fallbacks", stats.node_fallbacks},
-                           {"min_hit_depth", stats.min_hit_depth}};
+          // Distances relative to the input's bbox diagonal, like epsilon.
+          const auto dist = map::map_distances(bmap);
+          Eigen::AlignedBox3d box;
+          for (const auto& x : bmap.input.vertices) box.extend(x);
+          const double diag = box.diagonal().norm();
+          report["map"] = {{"path", o->map_path},
+                           {"boundary_nodes", stats.nodes},
+                           {"triangles", stats.triangles},
+                           {"node_fallbacks", stats.node_fallbacks},
+                           {"min_hit_depth", stats.min_hit_depth},
+                           {"vertex_to_boundary_max", dist.vertex_max / diag},
+                           {"node_to_input_max", dist.node_max / diag}};
           logger().info("map written to {} ({} input vertices, {} boundary nodes)", o->map_path,
                         bmap.input.vertices.size(), bmap.nodes.size());
         }

@@ -80,4 +80,13 @@ mesh::Vec3 input_point(const mesh::BoundaryMap& m, const mesh::SurfacePoint& p) 
   return (1 - p.u - p.v) * m.input.vertices[f[0]] + p.u * m.input.vertices[f[1]] + p.v * m.input.vertices[f[2]];
 }
 
+MapDistances map_distances(const mesh::BoundaryMap& m) {
+  MapDistances d;
+  for (std::size_t i = 0; i < m.vertex_to_boundary.size(); ++i)
+    d.vertex_max = std::max(d.vertex_max, (m.input.vertices[i] - boundary_point(m, m.vertex_to_boundary[i])).norm());
+  for (std::size_t j = 0; j < m.node_to_input.size(); ++j)
+    d.node_max = std::max(d.node_max, (m.nodes[j] - input_point(m, m.node_to_input[j])).norm());
+  return d;
+}
+
 } // namespace curvetet::map

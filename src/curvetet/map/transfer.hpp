@@ -34,4 +34,13 @@ mesh::Vec3 boundary_point(const mesh::BoundaryMap& map, const mesh::SurfacePoint
 // Point of the input surface at a map point.
 mesh::Vec3 input_point(const mesh::BoundaryMap& map, const mesh::SurfacePoint& p);
 
+// How far the map moves points (absolute units): max |x_i - φ(x_i)| over the
+// input vertices (the points where the pipeline enforces ε) and max
+// |n_j - φ⁻¹(n_j)| over the boundary nodes (between input vertices the
+// curved surface may lie a little farther).
+struct MapDistances {
+  double vertex_max = 0, node_max = 0;
+};
+MapDistances map_distances(const mesh::BoundaryMap& map);
+
 } // namespace curvetet::map
