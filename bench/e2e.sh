@@ -10,6 +10,7 @@
 #   --peer    also run Gmsh's own curved meshing of the same model
 #             (bench/gmsh_curving.py, order 4, no optimizer): time, tets,
 #             elements Gmsh itself finds invalid
+#   CURVETET_BIN=program to run (default ./build/app/curvetet)
 #   E2E_TIMEOUT=seconds per model (default 1800; exit 124 = timed out)
 #   E2E_EPSILON=relative epsilon for --verify (default 0.01, the CLI default)
 #   default meshes: every ../shared/data/good/*.off, smallest first.
@@ -32,7 +33,7 @@ meshes=("$@")
 if [ ${#meshes[@]} -eq 0 ]; then
   mapfile -t meshes < <(ls -S -r ../shared/data/good/*.off)
 fi
-bin=./build/app/curvetet
+bin=${CURVETET_BIN:-./build/app/curvetet}
 [ -x "$bin" ] || bash scripts/build.sh curvetet_cli >/dev/null
 eps=${E2E_EPSILON:-0.01}
 out=$(mktemp -d)
