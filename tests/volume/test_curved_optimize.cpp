@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+
 #include <limits>
 
 using namespace curvetet;
@@ -131,5 +133,20 @@ TEST(CurvedOptimize, FrameCacheSizeDoesNotChangeTheResult) {
   volume::optimize_curved(a, o);
   o.frame_cache_bytes = 0; // the smallest cache: released and refilled all along
   volume::optimize_curved(b, o);
+  EXPECT_EQ(a.nodes, b.nodes);
+}
+
+TEST(CurvedOptimize, ThreadCountDoesNotChangeTheResult) {
+  auto a = bad_mesh(4), b = a;
+  volume::CurvedOptimizeOptions o;
+  o.bad_fraction = 1.0;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    volume::optimize_curved(a, o);
+  }
+  {
+    tbb::global_control four(tbb::global_control::max_allowed_parallelism, 4);
+    volume::optimize_curved(b, o);
+  }
   EXPECT_EQ(a.nodes, b.nodes);
 }

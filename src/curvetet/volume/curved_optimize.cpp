@@ -25,9 +25,21 @@ using Vec3 = Eigen::Vector3d;
 // The nodes a move displaces (with their weight on the displacement) and the
 // tets whose shape it changes.
 struct Move {
+  int key = -1; // the node the move is named after (corner v, or the node)
   std::vector<std::pair<int, double>> nodes;
   std::vector<int> tets;
 };
+
+enum class Outcome { accepted, rejected_quality, rejected_certificate };
+
+// Per-thread state of the move being tried (AmipsFrames): frames[k] (in the
+// cache) and directions[k * q + q'] for touched tet k.
+struct Scratch {
+  std::vector<Eigen::Matrix3d*> frames;
+  std::vector<Eigen::Vector3d> directions;
+};
+
+constexpr std::size_t kBatchSize = 64; // moves tried in parallel at once
 
 // What a sweep improves: the max AMIPS of the touched tets, or their min
 // scaled Jacobian (kept from getting worse by the other goal's moves).
@@ -54,7 +66,6 @@ class CurvedOptimizer {
         uses_[fill[id]++] = {t, i};
       }
     for (int i = 0; i < np_; ++i) barycentric_.push_back(highorder::tet_node_barycentric(m.order, i));
-    weight_.assign(n, 0);
     for (auto& f : failed_at_) f.assign(n, -1);
     changed_at_.assign(m.num_tets(), 0);
     amips_.assign(m.num_tets(), 0);
@@ -74,7 +85,13 @@ class CurvedOptimizer {
   const std::vector<double>& scaled_jacobians() const { return sj_; }
 
   // One sweep over the bad tets, worst first: max AMIPS >= threshold, or
-  // min scaled Jacobian below options.min_scaled_jacobian.
+  // min scaled Jacobian below options.min_scaled_jacobian. Every node of a
+  // bad tet is a candidate move, once per sweep; the candidates go in
+  // batches of moves with disjoint touched tets, which are tried in
+  // parallel: a move reads and writes only its touched tets and nodes (a
+  // node a move displaces lies in its touched tets only), so each move sees
+  // the mesh as the previous batches left it, whatever the thread count.
+  // A candidate that conflicts with the batch waits for the next one.
   void sweep(Goal goal, double threshold, CurvedOptimizeStats& stats) {
     const auto is_bad = [&](int t) {
       return goal == Goal::amips ? amips_[t] >= threshold : sj_[t] < o_.min_scaled_jacobian;
@@ -85,36 +102,87 @@ class CurvedOptimizer {
     for (int t = 0; t < m_.num_tets(); ++t)
       if (is_bad(t)) bad.push_back(t);
     std::stable_sort(bad.begin(), bad.end(), [&](int a, int b) { return badness(a) > badness(b); });
-    std::vector<char> tried(m_.nodes.size(), 0);
-    for (int t : bad) {
-      if (!is_bad(t)) continue; // improved by an earlier move
+    // Candidates (bad tet, local node) in order; each node once.
+    std::vector<std::pair<int, int>> pending;
+    std::vector<char> listed(m_.nodes.size(), 0);
+    for (int t : bad)
       for (int i = 0; i < np_; ++i) {
         const int id = m_.tet(t)[i];
-        if (frozen_[id] || tried[id]) continue;
-        const bool is_corner = i < 4;
-        if (is_corner ? !o_.move_vertices : !o_.move_nodes) continue;
-        tried[id] = 1;
-        const Move mv = is_corner ? vertex_move(id) : node_move(id);
+        if (frozen_[id] || listed[id] || !(i < 4 ? o_.move_vertices : o_.move_nodes)) continue;
+        listed[id] = 1;
+        pending.emplace_back(t, i);
+      }
+
+    std::vector<long> locked(m_.num_tets(), -1); // batch that holds a tet
+    struct Job {
+      Move mv;
+      bool corner = false;
+      Outcome outcome = Outcome::rejected_quality;
+    };
+    std::vector<Job> batch;
+    while (!pending.empty()) {
+      ++clock_;
+      batch.clear();
+      std::vector<std::pair<int, int>> later;
+      for (std::size_t c = 0; c < pending.size(); ++c) {
+        const auto [t, i] = pending[c];
+        if (batch.size() >= kBatchSize) {
+          later.insert(later.end(), pending.begin() + c, pending.end());
+          break;
+        }
+        if (!is_bad(t)) continue; // improved by an earlier move
+        const int id = m_.tet(t)[i];
+        Move mv = i < 4 ? vertex_move(id) : node_move(id);
         if (mv.nodes.empty()) continue;
-        // Moving one high-order node of a straight tet changes its Jacobian
-        // by d (x) grad(phi_node), whose sign varies over the tet, so its true
-        // max AMIPS rises (a dip of the max sampled at quadrature points is
-        // an artefact): only try when the worst touched tet is curved.
-        if (!is_corner && straight(worst_of(mv.tets))) continue;
-        // A move depends only on its touched tets: if none changed since it
-        // last failed for this goal, it would fail again.
-        long& failed = failed_at_[static_cast<int>(goal)][id];
-        long last_change = -1;
-        for (int tt : mv.tets) last_change = std::max(last_change, changed_at_[tt]);
-        if (last_change <= failed) continue;
-        if (!try_move(mv, goal, stats)) {
-          failed = clock_;
+        if (std::any_of(mv.tets.begin(), mv.tets.end(), [&](int x) { return locked[x] == clock_; })) {
+          later.emplace_back(t, i);
           continue;
         }
-        ++clock_;
-        for (int tt : mv.tets) changed_at_[tt] = clock_;
-        ++(is_corner ? stats.vertex_moves : stats.node_moves);
-        if (goal == Goal::scaled_jacobian) ++stats.scaled_jacobian_moves;
+        // Moving one high-order node of a straight tet changes its Jacobian
+        // by d (x) grad(phi_node), whose sign varies over the tet, so its
+        // true max AMIPS rises (a dip of the max sampled at quadrature
+        // points is an artefact): only try when the worst touched tet is curved.
+        if (i >= 4 && straight(worst_of(mv.tets))) continue;
+        // A move depends only on its touched tets: if none changed since it
+        // last failed for this goal, it would fail again.
+        long last_change = -1;
+        for (int x : mv.tets) last_change = std::max(last_change, changed_at_[x]);
+        if (last_change < failed_at_[static_cast<int>(goal)][id]) continue;
+        for (int x : mv.tets) locked[x] = clock_;
+        batch.push_back({std::move(mv), i < 4});
+      }
+      pending.swap(later);
+      if (batch.empty()) continue;
+
+      // Frames of every touched tet in the cache before the parallel part
+      // (the cache's bookkeeping is not shared between threads).
+      std::size_t touched = 0;
+      for (const Job& j : batch) touched += j.mv.tets.size();
+      cache_.reserve(static_cast<int>(touched));
+      std::vector<int> missing;
+      for (const Job& j : batch)
+        for (int x : j.mv.tets)
+          if (!cache_.cached(x)) {
+            cache_.slot(x);
+            missing.push_back(x);
+          }
+      tbb::parallel_for(std::size_t(0), missing.size(), [&](std::size_t k) { frames(missing[k], cache_.slot(missing[k])); });
+
+      tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t k) {
+        thread_local Scratch scratch;
+        batch[k].outcome = try_move(batch[k].mv, goal, scratch);
+      });
+      for (const Job& j : batch) {
+        switch (j.outcome) {
+          case Outcome::accepted:
+            ++(j.corner ? stats.vertex_moves : stats.node_moves);
+            if (goal == Goal::scaled_jacobian) ++stats.scaled_jacobian_moves;
+            for (int x : j.mv.tets) changed_at_[x] = clock_;
+            break;
+          case Outcome::rejected_quality: ++stats.rejected_quality; break;
+          case Outcome::rejected_certificate: ++stats.rejected_certificate; break;
+        }
+        if (j.outcome != Outcome::accepted) failed_at_[static_cast<int>(goal)][j.mv.key] = clock_;
       }
     }
   }
@@ -159,6 +227,7 @@ class CurvedOptimizer {
   // Empty when a node with a non-zero weight is frozen.
   Move vertex_move(int v) const {
     Move mv;
+    mv.key = v;
     for (int k = offset_[v]; k < offset_[v + 1]; ++k) {
       const auto [t, local] = uses_[k];
       mv.tets.push_back(t);
@@ -206,6 +275,7 @@ class CurvedOptimizer {
 
   Move node_move(int id) const {
     Move mv;
+    mv.key = id;
     mv.nodes.emplace_back(id, 1.0);
     for (int k = offset_[id]; k < offset_[id + 1]; ++k) mv.tets.push_back(uses_[k].first);
     std::sort(mv.tets.begin(), mv.tets.end());
@@ -213,33 +283,27 @@ class CurvedOptimizer {
     return mv;
   }
 
-  // Frames and rank-one directions of the move in every touched tet
-  // (AmipsFrames): frames_[k] and directions_[k * q_ + q] for tet mv.tets[k].
-  // Frames come from the cache; every trial step is a cheap rank-one update.
-  void prepare(const Move& mv) {
-    cache_.reserve(static_cast<int>(mv.tets.size()));
-    frames_.clear();
-    for (int t : mv.tets) {
-      const bool was_cached = cache_.cached(t);
-      frames_.push_back(cache_.slot(t));
-      if (!was_cached) frames(t, frames_.back());
-    }
-    directions_.assign(mv.tets.size() * q_, Vec3::Zero());
-    for (const auto& [id, w] : mv.nodes) weight_[id] = w;
+  // The move's frames (already cached, see sweep) and rank-one directions.
+  void prepare(const Move& mv, Scratch& x) {
+    x.frames.clear();
+    for (int t : mv.tets) x.frames.push_back(cache_.cached_frames(t));
+    x.directions.assign(mv.tets.size() * q_, Vec3::Zero());
     for (std::size_t k = 0; k < mv.tets.size(); ++k)
-      for (int i = 0; i < np_; ++i)
-        if (const double w = weight_[m_.tet(mv.tets[k])[i]]; w != 0) table_.add_direction(i, w, &directions_[k * q_]);
-    for (const auto& [id, w] : mv.nodes) weight_[id] = 0;
+      for (int i = 0; i < np_; ++i) {
+        const int id = m_.tet(mv.tets[k])[i];
+        const auto it = std::lower_bound(mv.nodes.begin(), mv.nodes.end(), std::make_pair(id, -std::numeric_limits<double>::infinity()));
+        if (it != mv.nodes.end() && it->first == id) table_.add_direction(i, it->second, &x.directions[k * q_]);
+      }
   }
 
   // Max AMIPS of the touched tets mv.tets[k], k in `which`, were the move's
   // nodes displaced by d; stops early (returning a value >= bound) once a
   // tet reaches `bound`.
-  double trial_amips(const std::vector<int>& which, const Vec3& d,
+  double trial_amips(const Scratch& x, const std::vector<int>& which, const Vec3& d,
                      double bound = std::numeric_limits<double>::infinity()) const {
     double worst = 0;
     for (int k : which) {
-      worst = std::max(worst, table_.max_amips(frames_[k], &directions_[k * q_], d, bound));
+      worst = std::max(worst, table_.max_amips(x.frames[k], &x.directions[k * q_], d, bound));
       if (worst >= bound) break;
     }
     return worst;
@@ -247,11 +311,11 @@ class CurvedOptimizer {
 
   // Min scaled Jacobian of the same tets, were the nodes displaced by d;
   // stops early (returning a value < floor) once a tet falls below `floor`.
-  double trial_scaled_jacobian(const std::vector<int>& which, const Vec3& d,
+  double trial_scaled_jacobian(const Scratch& x, const std::vector<int>& which, const Vec3& d,
                                double floor = -std::numeric_limits<double>::infinity()) const {
     double worst = std::numeric_limits<double>::infinity();
     for (int k : which) {
-      worst = std::min(worst, table_.min_scaled_jacobian(frames_[k], &directions_[k * q_], d, floor));
+      worst = std::min(worst, table_.min_scaled_jacobian(x.frames[k], &x.directions[k * q_], d, floor));
       if (worst < floor) break;
     }
     return worst;
@@ -273,15 +337,15 @@ class CurvedOptimizer {
   // Tries the move along a descent direction of the goal with halving
   // steps; keeps the first step that improves the goal without hurting the
   // other measure and whose touched tets are all certified positive.
-  bool try_move(const Move& mv, Goal goal, CurvedOptimizeStats& stats) {
+  Outcome try_move(const Move& mv, Goal goal, Scratch& x) {
     double amips0 = 0, sj0 = std::numeric_limits<double>::infinity();
     for (int t : mv.tets) {
       amips0 = std::max(amips0, amips_[t]);
       sj0 = std::min(sj0, sj_[t]);
     }
     const double h = edge_scale(mv);
-    if (!(h > 0) || !std::isfinite(amips0)) return false;
-    prepare(mv);
+    if (!(h > 0) || !std::isfinite(amips0)) return Outcome::rejected_quality;
+    prepare(mv, x);
 
     // The touched tets that decide the direction: those near the worst.
     std::vector<int> all(mv.tets.size()), active;
@@ -291,7 +355,7 @@ class CurvedOptimizer {
       if (goal == Goal::amips ? amips_[t] >= 0.5 * amips0 : sj_[t] < o_.min_scaled_jacobian) active.push_back(k);
     }
     const auto objective = [&](const Vec3& d) {
-      return goal == Goal::amips ? trial_amips(active, d) : -trial_scaled_jacobian(active, d);
+      return goal == Goal::amips ? trial_amips(x, active, d) : -trial_scaled_jacobian(x, active, d);
     };
 
     // Descent direction of the objective, central differences.
@@ -302,10 +366,7 @@ class CurvedOptimizer {
       const double plus = objective(e), minus = objective(-e);
       if (std::isfinite(plus) && std::isfinite(minus)) g[a] = (plus - minus) / (2 * fd);
     }
-    if (!(g.norm() > 0)) {
-      ++stats.rejected_quality;
-      return false;
-    }
+    if (!(g.norm() > 0)) return Outcome::rejected_quality;
     const Vec3 dir = -g.normalized();
 
     // AMIPS moves must lower the max and may not take a tet below the scaled
@@ -319,21 +380,20 @@ class CurvedOptimizer {
     double step = 0.25 * h;
     for (int s = 0; s < o_.line_search_steps; ++s, step *= 0.5) {
       const Vec3 d = step * dir;
-      if (!(trial_amips(all, d, amips_bound) < amips_bound)) continue;
-      const double sj = trial_scaled_jacobian(all, d, sj_floor);
+      if (!(trial_amips(x, all, d, amips_bound) < amips_bound)) continue;
+      const double sj = trial_scaled_jacobian(x, all, d, sj_floor);
       if (goal == Goal::amips ? sj < sj_floor : !(sj > sj_floor)) continue;
       place(mv, saved, d);
       bool ok = true;
       for (int t : mv.tets) ok = ok && certified(t);
       if (ok) {
-        for (std::size_t k = 0; k < mv.tets.size(); ++k) evaluate(mv.tets[k], frames_[k]);
-        return true;
+        for (std::size_t k = 0; k < mv.tets.size(); ++k) evaluate(mv.tets[k], x.frames[k]);
+        return Outcome::accepted;
       }
       certificate_failed = true;
       place(mv, saved, Vec3::Zero()); // saved + 0 * d: bit-exact restore
     }
-    ++(certificate_failed ? stats.rejected_certificate : stats.rejected_quality);
-    return false;
+    return certificate_failed ? Outcome::rejected_certificate : Outcome::rejected_quality;
   }
 
   mesh::TetMesh& m_;
@@ -349,12 +409,9 @@ class CurvedOptimizer {
   std::vector<double> sj_;              // min scaled Jacobian per tet
   FrameCache cache_;
   double sweep_max_amips_ = 0;
-  long clock_ = 0;                       // accepted moves so far
-  std::vector<long> changed_at_;         // per tet: clock_ of the last move touching it
-  std::array<std::vector<long>, 2> failed_at_; // per goal and node: clock_ when its move last failed
-  std::vector<Eigen::Matrix3d*> frames_; // the current move's touched tets' frames (in cache_)
-  std::vector<double> weight_;          // scratch: weight of each node in the current move
-  std::vector<Vec3> directions_;        // the current move's rank-one directions
+  long clock_ = 0;                             // batches tried so far
+  std::vector<long> changed_at_;               // per tet: batch of the last move that changed it
+  std::array<std::vector<long>, 2> failed_at_; // per goal and node: batch where its move last failed
 };
 
 struct Summary {

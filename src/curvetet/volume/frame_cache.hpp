@@ -41,6 +41,9 @@ class FrameCache {
     return &storage_[static_cast<std::size_t>(slot_of_[t]) * points_];
   }
 
+  // Frames of a cached tet (no bookkeeping: safe from several threads).
+  Eigen::Matrix3d* cached_frames(int t) { return &storage_[static_cast<std::size_t>(slot_of_[t]) * points_]; }
+
   int capacity() const { return capacity_; }
 
  private:
