@@ -94,7 +94,8 @@ try:
 except Exception:
     print(" ? | ? | ? |"); sys.exit()
 if not r.get("finished"):
-    print(" >%s | - | - |" % r.get("seconds", "?"))
+    # seconds are set only when the time limit stopped it; otherwise Gmsh failed
+    print(" >%s | - | - |" % r["seconds"] if "seconds" in r else " failed | - | - |")
 else:
     print(" %s | %s | %s |" % (r["seconds"], r["tets"], r["invalid"]))' "$pj")
   fi
