@@ -325,13 +325,18 @@ class CurvedOptimizer {
     for (std::size_t k = 0; k < mv.nodes.size(); ++k) m_.nodes[mv.nodes[k].first] = saved[k] + mv.nodes[k].second * d;
   }
 
-  // Shortest corner edge of the touched tets: the scale of the steps.
-  double edge_scale(const Move& mv) const {
-    double h = std::numeric_limits<double>::infinity();
+  // Shortest and longest corner edges of the touched tets: the range of
+  // the step lengths (a thin tet next to big ones may need a long move).
+  std::pair<double, double> edge_range(const Move& mv) const {
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
     for (int t : mv.tets)
       for (int a = 0; a < 4; ++a)
-        for (int b = a + 1; b < 4; ++b) h = std::min(h, (m_.nodes[m_.tet(t)[a]] - m_.nodes[m_.tet(t)[b]]).norm());
-    return h;
+        for (int b = a + 1; b < 4; ++b) {
+          const double e = (m_.nodes[m_.tet(t)[a]] - m_.nodes[m_.tet(t)[b]]).norm();
+          lo = std::min(lo, e);
+          hi = std::max(hi, e);
+        }
+    return {lo, hi};
   }
 
   // Tries the move along a descent direction of the goal with halving
@@ -343,7 +348,7 @@ class CurvedOptimizer {
       amips0 = std::max(amips0, amips_[t]);
       sj0 = std::min(sj0, sj_[t]);
     }
-    const double h = edge_scale(mv);
+    const auto [h, h_max] = edge_range(mv);
     if (!(h > 0) || !std::isfinite(amips0)) return Outcome::rejected_quality;
     prepare(mv, x);
 
@@ -377,8 +382,10 @@ class CurvedOptimizer {
     std::vector<Vec3> saved;
     for (const auto& [id, w] : mv.nodes) saved.push_back(m_.nodes[id]);
     bool certificate_failed = false;
-    double step = 0.25 * h;
-    for (int s = 0; s < o_.line_search_steps; ++s, step *= 0.5) {
+    // Halving steps from a quarter of the longest edge down to the shortest
+    // edge's quarter halved line_search_steps - 1 times.
+    const double smallest = 0.25 * h * std::pow(0.5, o_.line_search_steps - 1);
+    for (double step = 0.25 * h_max; step >= smallest; step *= 0.5) {
       const Vec3 d = step * dir;
       if (!(trial_amips(x, all, d, amips_bound) < amips_bound)) continue;
       const double sj = trial_scaled_jacobian(x, all, d, sj_floor);

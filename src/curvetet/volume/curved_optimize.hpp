@@ -15,7 +15,8 @@
 //    is curved (bending a straight tet raises its max AMIPS).
 // Each pass sweeps the tets of high max AMIPS, then those of low min scaled
 // Jacobian. d is a descent direction of the sweep's goal over the touched
-// tets (central finite differences), tried with halving steps. A move is
+// tets (central finite differences), tried with halving steps from a quarter
+// of the longest touched edge. A move is
 // kept only if it improves the goal without hurting the other measure (see
 // CurvedOptimizeOptions) AND highorder::certify_tet says `positive` for
 // every touched tet (undecided = rejected); otherwise the nodes are restored
@@ -38,7 +39,7 @@ struct CurvedOptimizeOptions {
   double min_amips = 4.0;       // ...and above this value
   double min_scaled_jacobian = 0.05; // a sweep also raises tets below this min scaled Jacobian, and no move
                                      // takes a tet below it (or below its own value when already lower)
-  int line_search_steps = 6;    // step halvings per move
+  int line_search_steps = 6;    // step halvings below the touched tets' shortest edge (steps start at the longest)
   std::size_t frame_cache_bytes = std::size_t(1) << 30; // memory for cached per-tet frames (speed only)
   bool move_vertices = true;
   bool move_nodes = true;
