@@ -24,7 +24,8 @@
 // with an exterior the box) and of every tet face used once never move, so
 // the boundary and the map onto it are unchanged. Precondition: every tet
 // certified positive (the assembly's verification); then so is the result.
-// Deterministic: sequential, tets visited worst first (ties by index).
+// Deterministic for any thread count: moves are tried in batches of disjoint
+// stars, built in order from the tets visited worst first (ties by index).
 #include "curvetet/mesh/tet_mesh.hpp"
 
 #include <cstddef>
