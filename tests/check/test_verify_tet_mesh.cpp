@@ -3,6 +3,8 @@
 // intersecting boundary, an input too far away) is reported and fails it.
 #include "curvetet/check/boundary_linearization.hpp"
 #include "curvetet/check/verify_tet_mesh.hpp"
+#include "curvetet/check/closest_points.hpp"
+#include "curvetet/highorder/element_map.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 
 #include "common/curved_box.hpp"
@@ -94,4 +96,32 @@ TEST(VerifyTetMesh, DistanceToInput) {
   EXPECT_FALSE(w.distance_ok());
   EXPECT_GT(w.input_to_boundary_max, 0.01);
   EXPECT_FALSE(w.ok());
+}
+
+TEST(VerifyTetMesh, DistanceIsMeasuredOnTheCurvedSurfaceNotOnItsChords) {
+  // Points of the curved boundary itself, inside its triangles: distance 0.
+  // The flat linearization with one segment per edge is the triangle of the
+  // corners, which the bulge leaves far behind.
+  auto m = curvetet::testing::curved_box(3, 2, 0.3);
+  mesh::SurfaceMesh input;
+  for (int b = 0; b < m.num_boundary(); ++b) {
+    std::vector<Eigen::Vector3d> nodes;
+    for (int k = 0; k < m.triangle_nodes(); ++k) nodes.push_back(m.nodes[m.boundary_triangle(b)[k]]);
+    for (const Eigen::Vector2d uv : {Eigen::Vector2d(0.3, 0.3), Eigen::Vector2d(0.2, 0.5), Eigen::Vector2d(0.6, 0.1)})
+      input.vertices.push_back(highorder::triangle_point(3, nodes.data(), uv));
+    const int n = static_cast<int>(input.vertices.size());
+    input.faces.push_back({n - 3, n - 2, n - 1});
+  }
+  const auto chords = check::linearize_boundary(m, 1);
+  double chord_max = 0;
+  for (double d : check::distances_to_surface(chords.surface, input.vertices)) chord_max = std::max(chord_max, d);
+  ASSERT_GT(chord_max, 0.01);
+
+  check::TetMeshVerifyOptions o;
+  o.input = &input;
+  o.segments_per_edge = 1;
+  o.epsilon = 1e-9;
+  const auto v = check::verify_tet_mesh(m, o);
+  EXPECT_LT(v.input_to_boundary_max, 1e-12) << "chord distance " << chord_max;
+  EXPECT_TRUE(v.distance_ok());
 }

@@ -53,13 +53,16 @@ BoundaryLinearization linearize_boundary(const mesh::TetMesh& m, int s) {
           at(i, j) = eval();
         }
       }
+    const auto uv = [s](int i, int j) { return Eigen::Vector2d(double(i) / s, double(j) / s); };
     for (int i = 0; i < s; ++i)
       for (int j = 0; i + j < s; ++j) {
         out.surface.faces.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
         out.source_face.push_back(b);
+        out.source_uv.push_back({uv(i, j), uv(i + 1, j), uv(i, j + 1)});
         if (i + j + 1 < s) {
           out.surface.faces.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
           out.source_face.push_back(b);
+          out.source_uv.push_back({uv(i + 1, j), uv(i + 1, j + 1), uv(i, j + 1)});
         }
       }
   }

@@ -13,6 +13,9 @@
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/mesh/tet_mesh.hpp"
 
+#include <Eigen/Core>
+
+#include <array>
 #include <vector>
 
 namespace curvetet::check {
@@ -20,6 +23,9 @@ namespace curvetet::check {
 struct BoundaryLinearization {
   mesh::SurfaceMesh surface;
   std::vector<int> source_face; // boundary triangle of each flat triangle
+  // Per flat triangle: its corners' (u, v) on the source triangle's
+  // reference triangle (highorder::triangle_point).
+  std::vector<std::array<Eigen::Vector2d, 3>> source_uv;
 };
 
 BoundaryLinearization linearize_boundary(const mesh::TetMesh& mesh, int segments_per_edge);

@@ -11,4 +11,11 @@ namespace curvetet::check {
 // distances[i] = min over faces of |queries[i] - face|. Empty mesh: +inf.
 std::vector<double> distances_to_surface(const mesh::SurfaceMesh& surface, const std::vector<mesh::Vec3>& queries);
 
+struct ClosestPoint {
+  int face = -1; // -1: empty mesh
+  mesh::Vec3 point = mesh::Vec3::Zero();
+};
+// The closest point of the surface to each query, and its face.
+std::vector<ClosestPoint> closest_points(const mesh::SurfaceMesh& surface, const std::vector<mesh::Vec3>& queries);
+
 } // namespace curvetet::check

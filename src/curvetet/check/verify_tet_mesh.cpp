@@ -2,6 +2,7 @@
 
 #include "curvetet/check/boundary_linearization.hpp"
 #include "curvetet/check/closest_points.hpp"
+#include "curvetet/check/curved_distance.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/highorder/quality.hpp"
 
@@ -191,7 +192,8 @@ RegionBoundaries check_conformity(const mesh::TetMesh& m, TetMeshVerification& r
   return out;
 }
 
-void check_distances(const BoundaryLinearization& lin, const TetMeshVerifyOptions& o, TetMeshVerification& r) {
+void check_distances(const mesh::TetMesh& domain, const BoundaryLinearization& lin, const TetMeshVerifyOptions& o,
+                     TetMeshVerification& r) {
   const mesh::SurfaceMesh& in = *o.input;
   r.has_input = true;
   r.epsilon = o.epsilon;
@@ -216,7 +218,7 @@ void check_distances(const BoundaryLinearization& lin, const TetMeshVerifyOption
     if (used[i]) points.push_back(in.vertices[i]);
   r.bbox_diagonal = mesh::bbox_diagonal(points);
   d = r.bbox_diagonal > 0 ? r.bbox_diagonal : 1.0;
-  stats(distances_to_surface(lin.surface, points), r.input_to_boundary_max, r.input_to_boundary_mean);
+  stats(distances_to_curved_boundary(domain, lin, points), r.input_to_boundary_max, r.input_to_boundary_mean);
   stats(distances_to_surface(in, lin.surface.vertices), r.boundary_to_input_max, r.boundary_to_input_mean);
 }
 
@@ -243,7 +245,7 @@ TetMeshVerification verify_tet_mesh(const mesh::TetMesh& m, const TetMeshVerifyO
   BoundaryLinearization lin = linearize_boundary(boundaries.domain, r.segments_per_edge);
   r.linearized_faces = lin.surface.faces.size();
   r.surface = check_preconditions(mesh::to_soup(lin.surface));
-  if (o.input) check_distances(lin, o, r);
+  if (o.input) check_distances(boundaries.domain, lin, o, r);
   return r;
 }
 
@@ -310,7 +312,8 @@ nlohmann::json TetMeshVerification::json() const {
                      {"outer_triangles", outer_triangles},
                      {"outer_surface", outer_surface.json()}};
   j["boundary_surface"]["linearization"] =
-      "exact predicates on a conforming flat triangulation of the curved boundary (segments_per_edge^2 per face)";
+      "exact predicates on a conforming flat triangulation of the curved boundary (segments_per_edge^2 per face); "
+      "input_to_boundary on the curved triangles themselves (check/curved_distance.hpp)";
   if (has_input)
     j["distance"] = {{"ok", distance_ok()},
                      {"epsilon_relative", epsilon},
