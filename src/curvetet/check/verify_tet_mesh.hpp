@@ -22,10 +22,11 @@
 //    input preconditions exactly: closed, edge- and vertex-manifold,
 //    consistently oriented, outward, no zero-area triangle, no
 //    self-intersection (exact predicates on the linearization).
-// 4. With an input surface: distance from every input vertex to the
-//    linearized boundary and from every linearization vertex to the input
-//    (AABB closest points: a measurement), max and mean relative to the
-//    input's bbox diagonal; the input->boundary max must be <= epsilon.
+// 4. With an input surface: distance from every input vertex to the curved
+//    boundary (check/curved_distance.hpp: to an actual point of it, so an
+//    upper bound of the true distance) and from every linearization vertex
+//    (points of the curved boundary) to the input, max and mean relative to
+//    the input's bbox diagonal; the input->boundary max must be <= epsilon.
 #include "curvetet/check/preconditions.hpp"
 #include "curvetet/highorder/jacobian_certificate.hpp"
 #include "curvetet/mesh/surface_mesh.hpp"
