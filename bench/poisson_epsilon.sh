@@ -1,0 +1,60 @@
+#!/bin/sh
+# Poisson L2 error against epsilon (issue 10, paper §6.4; the README table of
+# "Example 1, Poisson"). Writes a dense ellipsoid (radii 1, 0.7, 0.5; an
+# octahedron subdivided LEVELS times, 8 * 4^LEVELS faces) with
+# bench/make_ellipsoid.py, runs the main command on it at each epsilon (P = 4,
+# --no-optimize), then `curvetet poisson` (P2 unknowns, Franke solution), and
+# prints one markdown row per epsilon: epsilon, the coarsening's max distance
+# (what epsilon bounds), tets, boundary triangles, dofs, L2 error, relative
+# L2 error, seconds of the meshing run. A run whose verification fails
+# (exit 5) prints its exit code and the verified distances instead.
+#
+# Usage: bench/poisson_epsilon.sh [build dir]
+# Environment: LEVELS (default 6: 32768 faces), EPSILONS (default
+# "0.01 0.002 0.001 0.0005 0.00025"), MIDDLE=flat adds --flat-middle,
+# THREADS (default 0 = all cores), KEEP=DIR keeps the meshes in DIR.
+set -u
+build=${1:-build}
+here=$(dirname "$0")
+levels=${LEVELS:-6}
+epsilons=${EPSILONS:-"0.01 0.002 0.001 0.0005 0.00025"}
+extra=""
+[ "${MIDDLE:-curved}" = flat ] && extra="--flat-middle"
+out=${KEEP:-$(mktemp -d)}
+mkdir -p "$out"
+input="$out/ellipsoid$levels.off"
+/usr/bin/python3 "$here/make_ellipsoid.py" "$levels" "$input" || exit 1
+echo "input: $input ($((8 * (1 << (2 * levels)))) faces), middle: ${MIDDLE:-curved}, threads: ${THREADS:-0}"
+echo "| ε | coarsening distance | tets | boundary triangles | dofs | L2 error | relative L2 error | mesh s |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+for eps in $epsilons; do
+  base="$out/e$eps"
+  start=$(date +%s.%N)
+  "$build"/app/curvetet -q --threads "${THREADS:-0}" "$input" -o "$base.msh" --epsilon "$eps" --no-optimize \
+    --report "$base.report.json" $extra 2> "$base.log"
+  code=$?
+  end=$(date +%s.%N)
+  if [ $code -eq 0 ]; then
+    "$build"/app/curvetet -q poisson "$base.msh" --json > "$base.poisson.json" || code=$?
+  fi
+  /usr/bin/python3 - "$base" "$eps" "$code" "$start" "$end" <<'PY'
+import json, sys
+base, eps, code, start, end = sys.argv[1], float(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4]), float(sys.argv[5])
+pct = f"{100 * eps:g} %"
+try:
+    r = json.load(open(base + ".report.json"))
+except (OSError, ValueError):
+    print(f"| {pct} | exit {code} (no report) | | | | | | |")
+    sys.exit()
+dist = r["coarsen"]["max_distance_relative"]
+if code != 0:
+    d = r["verification"]["distance"]
+    print(f"| {pct} | {dist:.2g}; exit {code}: verified input->boundary {d['input_to_boundary_max']:.3g}, "
+          f"boundary->input {d['boundary_to_input_max']:.3g} (x diagonal) | | | | | | |")
+    sys.exit()
+p = json.load(open(base + ".poisson.json"))["poisson"]
+print(f"| {pct} | {dist:.2g} | {p['tets']} | {r['assembly']['boundary_triangles']} | {p['dofs']} | "
+      f"{p['l2_error']:.3g} | {p['l2_relative_error']:.3g} | {end - start:.0f} |")
+PY
+done
+[ -n "${KEEP:-}" ] || rm -rf "$out"
