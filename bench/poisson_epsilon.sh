@@ -5,8 +5,9 @@
 # bench/make_ellipsoid.py, runs the main command on it at each epsilon (P = 4,
 # --no-optimize), then `curvetet poisson` (P2 unknowns, Franke solution), and
 # prints one markdown row per epsilon: epsilon, the coarsening's max distance
-# (what epsilon bounds), tets, boundary triangles, dofs, L2 error, relative
-# L2 error, seconds of the meshing run. A run whose verification fails
+# (what epsilon bounds), tets, boundary triangles, the mean boundary edge and
+# the volume-weighted mean longest tet edge (straight corner edges, meshio),
+# dofs, L2 error, relative L2 error, seconds of the meshing run. A run whose verification fails
 # (exit 5) prints its exit code and the verified distances instead.
 #
 # Usage: bench/poisson_epsilon.sh [build dir]
@@ -25,8 +26,8 @@ mkdir -p "$out"
 input="$out/ellipsoid$levels.off"
 /usr/bin/python3 "$here/make_ellipsoid.py" "$levels" "$input" || exit 1
 echo "input: $input ($((8 * (1 << (2 * levels)))) faces), middle: ${MIDDLE:-curved}, threads: ${THREADS:-0}"
-echo "| ε | coarsening distance | tets | boundary triangles | dofs | L2 error | relative L2 error | mesh s |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+echo "| ε | coarsening distance | tets | boundary triangles | boundary edge | tet size | dofs | L2 error | relative L2 error | mesh s |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for eps in $epsilons; do
   base="$out/e$eps"
   start=$(date +%s.%N)
@@ -44,17 +45,28 @@ pct = f"{100 * eps:g} %"
 try:
     r = json.load(open(base + ".report.json"))
 except (OSError, ValueError):
-    print(f"| {pct} | exit {code} (no report) | | | | | | |")
+    print(f"| {pct} | exit {code} (no report) | | | | | | | | |")
     sys.exit()
 dist = r["coarsen"]["max_distance_relative"]
 if code != 0:
     d = r["verification"]["distance"]
     print(f"| {pct} | {dist:.2g}; exit {code}: verified input->boundary {d['input_to_boundary_max']:.3g}, "
-          f"boundary->input {d['boundary_to_input_max']:.3g} (x diagonal) | | | | | | |")
+          f"boundary->input {d['boundary_to_input_max']:.3g} (x diagonal) | | | | | | | | |")
     sys.exit()
 p = json.load(open(base + ".poisson.json"))["poisson"]
-print(f"| {pct} | {dist:.2g} | {p['tets']} | {r['assembly']['boundary_triangles']} | {p['dofs']} | "
-      f"{p['l2_error']:.3g} | {p['l2_relative_error']:.3g} | {end - start:.0f} |")
+import contextlib, io, meshio, numpy as np
+with contextlib.redirect_stdout(io.StringIO()):  # meshio prints notes on stdout
+    m = meshio.read(base + ".msh")
+x = m.points
+tets = next(c.data for c in m.cells if c.type.startswith("tetra"))[:, :4]
+tris = next(c.data for c in m.cells if c.type.startswith("triangle"))[:, :3]
+longest = np.max([np.linalg.norm(x[tets[:, i]] - x[tets[:, j]], axis=1) for i in range(4) for j in range(i + 1, 4)], 0)
+a, b, c = (x[tets[:, k]] - x[tets[:, 0]] for k in (1, 2, 3))
+volume = np.abs(np.einsum("ij,ij->i", a, np.cross(b, c)))
+edge = np.mean([np.linalg.norm(x[tris[:, i]] - x[tris[:, (i + 1) % 3]], axis=1) for i in range(3)])
+print(f"| {pct} | {dist:.2g} | {p['tets']} | {r['assembly']['boundary_triangles']} | {edge:.3f} | "
+      f"{np.average(longest, weights=volume):.3f} | {p['dofs']} | {p['l2_error']:.3g} | {p['l2_relative_error']:.3g} | "
+      f"{end - start:.0f} |")
 PY
 done
 [ -n "${KEEP:-}" ] || rm -rf "$out"
