@@ -1,35 +1,45 @@
 #!/bin/sh
-# Poisson L2 error against epsilon (issue 10, paper §6.4; the README table of
-# "Example 1, Poisson"). Writes a dense ellipsoid (radii 1, 0.7, 0.5; an
-# octahedron subdivided LEVELS times, 8 * 4^LEVELS faces) with
-# bench/make_ellipsoid.py, runs the main command on it at each epsilon (P = 4,
-# --no-optimize), then `curvetet poisson` (P2 unknowns, Franke solution), and
-# prints one markdown row per epsilon: epsilon, the coarsening's max distance
-# (what epsilon bounds), tets, boundary triangles, the mean boundary edge and
-# the volume-weighted mean longest tet edge (straight corner edges, meshio),
-# dofs, L2 error, relative L2 error, seconds of the meshing run. A run whose verification fails
-# (exit 5) prints its exit code and the verified distances instead.
+# Poisson L2 error against epsilon (issue 10, paper §6.4): regenerates the two
+# tables of the README's "Example 1, Poisson". Writes a dense ellipsoid
+# (radii 1, 0.7, 0.5; an octahedron subdivided LEVELS times, 8 * 4^LEVELS
+# faces) with bench/make_ellipsoid.py, runs the main command on it at each
+# epsilon (P = 4, --no-optimize), first with the flat middle (--flat-middle),
+# then with the default curved middle, then `curvetet poisson` (P2 unknowns,
+# Franke solution), and prints one markdown row per run: epsilon, the
+# coarsening's max distance (what epsilon bounds, x bbox diagonal), tets,
+# boundary triangles, the mean boundary edge and the volume-weighted mean
+# longest tet edge (straight corner edges, via meshio), dofs, L2 error,
+# relative L2 error, seconds of the meshing run. A run whose verification
+# fails (exit 5) prints its exit code and the verified distances instead.
 #
 # Usage: bench/poisson_epsilon.sh [build dir]
-# Environment: LEVELS (default 6: 32768 faces), EPSILONS (default
-# "0.01 0.002 0.001 0.0005 0.00025"), MIDDLE=flat adds --flat-middle,
-# THREADS (default 0 = all cores), KEEP=DIR keeps the meshes in DIR.
+# Environment: LEVELS (default 6: 32768 faces), MIDDLES (default
+# "flat curved"), FLAT_EPSILONS (default "0.02 0.01 0.005 0.0025"),
+# CURVED_EPSILONS (default "0.01 0.002 0.001 0.0005 0.00025"), THREADS
+# (default 0 = all cores), KEEP=DIR keeps the meshes in DIR.
 set -u
 build=${1:-build}
 here=$(dirname "$0")
 levels=${LEVELS:-6}
-epsilons=${EPSILONS:-"0.01 0.002 0.001 0.0005 0.00025"}
-extra=""
-[ "${MIDDLE:-curved}" = flat ] && extra="--flat-middle"
 out=${KEEP:-$(mktemp -d)}
 mkdir -p "$out"
 input="$out/ellipsoid$levels.off"
 /usr/bin/python3 "$here/make_ellipsoid.py" "$levels" "$input" || exit 1
-echo "input: $input ($((8 * (1 << (2 * levels)))) faces), middle: ${MIDDLE:-curved}, threads: ${THREADS:-0}"
+for middle in ${MIDDLES:-flat curved}; do
+if [ "$middle" = flat ]; then
+  extra="--flat-middle"
+  epsilons=${FLAT_EPSILONS:-"0.02 0.01 0.005 0.0025"}
+else
+  extra=""
+  epsilons=${CURVED_EPSILONS:-"0.01 0.002 0.001 0.0005 0.00025"}
+fi
+echo
+echo "input: $input ($((8 * (1 << (2 * levels)))) faces), middle: $middle, threads: ${THREADS:-0}"
+echo
 echo "| ε | coarsening distance | tets | boundary triangles | boundary edge | tet size | dofs | L2 error | relative L2 error | mesh s |"
 echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for eps in $epsilons; do
-  base="$out/e$eps"
+  base="$out/${middle}_e$eps"
   start=$(date +%s.%N)
   "$build"/app/curvetet -q --threads "${THREADS:-0}" "$input" -o "$base.msh" --epsilon "$eps" --no-optimize \
     --report "$base.report.json" $extra 2> "$base.log"
@@ -68,5 +78,6 @@ print(f"| {pct} | {dist:.2g} | {p['tets']} | {r['assembly']['boundary_triangles'
       f"{np.average(longest, weights=volume):.3f} | {p['dofs']} | {p['l2_error']:.3g} | {p['l2_relative_error']:.3g} | "
       f"{end - start:.0f} |")
 PY
+done
 done
 [ -n "${KEEP:-}" ] || rm -rf "$out"
