@@ -83,8 +83,8 @@ curvetet::features::FeatureGraph graph_of(const std::string& input, const std::s
 // The properties every featured run must have: success, the report's
 // corner and chain counts equal to curvetet's grouping of the file, one
 // output line per coarse feature edge, the arc-length feature
-// correspondence within epsilon, and Gmsh finds every tet positive and the
-// boundary within epsilon. Returns the feature checker's output.
+// correspondence within epsilon, `curvetet check` accepts the file, and Gmsh
+// finds every tet positive and the boundary within epsilon. Returns the feature checker's output.
 curvetet::test::CommandResult expect_valid_featured_run(const FeatureRun& run, const std::string& input,
                                                         const std::string& features) {
   EXPECT_EQ(run.exit_code, 0) << run.log;
@@ -97,6 +97,11 @@ curvetet::test::CommandResult expect_valid_featured_run(const FeatureRun& run, c
   EXPECT_EQ(f["chains"].get<int>(), static_cast<int>(g.chains.size()));
   EXPECT_EQ(f["lines"].get<int>(), f["coarse_edges"].get<int>());
   EXPECT_LE(f["max_distance_relative"].get<double>(), 0.01);
+
+  // `curvetet check` re-verifies the written file (it skips the lines).
+  const auto cc = run_command(quoted(CURVETET_BINARY) + " -q check " + quoted(run.msh.string()) + " --input " +
+                              quoted(input) + " --epsilon 0.01 2>&1");
+  EXPECT_EQ(cc.exit_code, 0) << cc.out;
 
   const auto gc = gmsh_check(run.msh, input);
   EXPECT_EQ(gc.exit_code, 0) << gc.out;
