@@ -257,6 +257,52 @@ TEST(ShellFeatures, CollapseAlongTheChainIsAcceptedAndTracked) {
   EXPECT_EQ(fc.coarse_edges, 47);
 }
 
+// check_features measures the arc-length correspondence on the middle the
+// output has: with a curved middle, the curved edge, not its chord (the CAD
+// part cad_t20_component8 failed the pipeline's final check because its
+// curved feature edges fit the chain while their chords do not).
+TEST(ShellFeatures, FeatureDistanceIsMeasuredOnTheCurvedMiddleEdge) {
+  auto f = featured_shell(flat_octahedron(2), 30);
+  Shell& s = f.shell;
+  ShellEditor editor(s);
+  int from = -1;
+  for (int v = 0; v < s.num_vertices() && from < 0; ++v)
+    if (s.features.chain_of(v) >= 0) from = v;
+  ASSERT_GE(from, 0);
+  auto cand = collapse_candidate(editor, from, s.features.next[from]);
+  ASSERT_TRUE(cand.has_value());
+  const LinearMiddle linear;
+  const StarContext ctx{editor, linear, mesh::bbox_diagonal(s.input.vertices), 1e9};
+  ASSERT_FALSE(check_candidate(default_star_invariants(), ctx, *cand).has_value());
+  editor.commit(*cand, 0);
+  editor.compact();
+  // The merged edge (2 input edges of a straight chain, its middle vertex
+  // at the chord's midpoint): distance 0 on the flat middle.
+  int a = -1, b = -1;
+  for (const auto& [key, e] : s.features.edges)
+    if (e.length == 2) a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+  ASSERT_GE(a, 0);
+  set_flat_middle(s, 2);
+  EXPECT_LT(check_features(s).max_distance, 1e-12);
+  // Bulge the edge's quadratic node (in both prisms): the chain's middle
+  // vertex is now |delta| from the edge point at its arc-length parameter.
+  const Vec3 mid = 0.5 * (s.middle[a] + s.middle[b]), delta(0.003, -0.002, 0.001);
+  int moved = 0;
+  for (int p = 0; p < s.num_prisms(); ++p) {
+    const auto& t = s.faces[p];
+    if (std::count(t.begin(), t.end(), a) + std::count(t.begin(), t.end(), b) != 2) continue;
+    auto& nodes = s.middle_nodes[p];
+    int best = 3;
+    for (int q = 4; q < 6; ++q)
+      if ((nodes[q] - mid).norm() < (nodes[best] - mid).norm()) best = q;
+    ASSERT_LT((nodes[best] - mid).norm(), 1e-12);
+    nodes[best] += delta;
+    ++moved;
+  }
+  ASSERT_EQ(moved, 2);
+  EXPECT_NEAR(check_features(s).max_distance, delta.norm(), 1e-12);
+}
+
 // Closed chains (loops, and chains starting and ending at one corner) keep
 // at least 3 edges: on a triangular cylinder (rims marked as features) no collapse along a rim is
 // allowed, on a square one it is. Planned on bare candidates (the rule

@@ -7,6 +7,8 @@
 #include "curvetet/shell/coarsen.hpp"
 #include "curvetet/shell/curved_middle.hpp"
 
+#include <fmt/format.h>
+
 #include <memory>
 #include "curvetet/shell/extrusion.hpp"
 #include "curvetet/shell/feature_tracking.hpp"
@@ -93,7 +95,12 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
       const auto fc = shell::check_features(r.shell);
       report["features"] = {{"corners", fc.corners},       {"chains", fc.chains},
                             {"coarse_edges", fc.coarse_edges}, {"max_distance_relative", fc.max_distance / diagonal}};
-      if (!fc.ok(c.epsilon)) throw Error(ExitCode::internal, "feature preservation violated: " + fc.first_problem);
+      if (!fc.ok(c.epsilon))
+        throw Error(ExitCode::internal,
+                    "feature preservation violated: " +
+                        (fc.first_problem.empty() ? fmt::format("feature distance {:.6g} >= epsilon {:.6g}",
+                                                                fc.max_distance, c.epsilon)
+                                                  : fc.first_problem));
     }
   }
 

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
+#include <unordered_map>
 
 namespace curvetet::shell {
 
@@ -394,8 +396,17 @@ FeatureCheck check_features(const Shell& s) {
   }
   // Chains: the coarse edges, sorted by start, cover each chain end to end.
   std::set<std::uint64_t> shell_edges;
-  for (const auto& t : s.faces)
-    for (int k = 0; k < 3; ++k) shell_edges.insert(ShellFeatures::edge_key(t[k], t[(k + 1) % 3]));
+  // One prism per edge: where the curved middle edge is evaluated.
+  std::unordered_map<std::uint64_t, int> prism_of_edge;
+  for (int p = 0; p < s.num_prisms(); ++p) {
+    const auto& t = s.faces[p];
+    for (int k = 0; k < 3; ++k) {
+      const auto key = ShellFeatures::edge_key(t[k], t[(k + 1) % 3]);
+      shell_edges.insert(key);
+      prism_of_edge.emplace(key, p);
+    }
+  }
+  const bool curved = !s.middle_nodes.empty();
   const int K = static_cast<int>(f.chains.size());
   out.chains = K;
   std::vector<std::vector<std::pair<int, int>>> per_chain(K); // (first, other)
@@ -409,9 +420,24 @@ FeatureCheck check_features(const Shell& s) {
       ++out.missing_edges;
       problem(fmt::format("coarse feature edge ({}, {}) is not a shell edge", a, b));
     }
-    const Vec3 pa = s.middle[e.first], pb = s.middle[e.first == a ? b : a];
-    out.max_distance = std::max(out.max_distance,
-                                feature_edge_distance(f, s.input, e, [&](double t) { return ((1 - t) * pa + t * pb).eval(); }));
+    const int other = e.first == a ? b : a;
+    const Vec3 pa = s.middle[e.first], pb = s.middle[other];
+    std::function<Vec3(double)> curve = [&](double t) { return ((1 - t) * pa + t * pb).eval(); };
+    const auto pe = prism_of_edge.find(key);
+    if (curved && pe != prism_of_edge.end()) {
+      // The middle edge as the output has it: the prism's curved triangle
+      // restricted to that edge (edge nodes agree between its two prisms).
+      const auto& t = s.faces[pe->second];
+      const int i = static_cast<int>(std::find(t.begin(), t.end(), e.first) - t.begin());
+      const int j = static_cast<int>(std::find(t.begin(), t.end(), other) - t.begin());
+      curve = [&s, p = pe->second, i, j](double t) {
+        std::array<double, 3> w{0, 0, 0};
+        w[i] = 1 - t;
+        w[j] = t;
+        return middle_point(s, MapPoint{p, w[1], w[2]});
+      };
+    }
+    out.max_distance = std::max(out.max_distance, feature_edge_distance(f, s.input, e, curve));
   }
   for (int k = 0; k < K; ++k) {
     auto& r = recs[k];

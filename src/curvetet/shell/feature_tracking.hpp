@@ -72,7 +72,7 @@ struct FeatureCheck {
   int corners = 0, corners_missing = 0, corners_moved = 0;
   int chains = 0, broken_chains = 0; // not covered end to end by live shell edges
   int coarse_edges = 0, missing_edges = 0; // coarse feature edges that are not shell edges
-  double max_distance = 0; // arc-length correspondence on the linear middle
+  double max_distance = 0; // arc-length correspondence on the middle (curved when middle_nodes are set)
   std::string first_problem;
   bool ok(double epsilon) const {
     return corners_missing == 0 && corners_moved == 0 && broken_chains == 0 && missing_edges == 0 && max_distance < epsilon;

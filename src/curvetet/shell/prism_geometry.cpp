@@ -117,6 +117,13 @@ bool section_condition(const PrismGeom& g, const Vec3& a, const Vec3& b, const V
 }
 
 std::optional<std::array<double, 2>> project_in(const PrismGeom& g, const Vec3& p, double tol, double* depth) {
+  // A middle vertex is the foot of its own fiber: its image is that corner
+  // exactly (feature corners land on their output vertex, not 1e-32 beside).
+  for (int k = 0; k < 3; ++k)
+    if (p == g.middle[k]) {
+      if (depth) *depth = 0;
+      return std::array<double, 2>{k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
+    }
   double best = -std::numeric_limits<double>::infinity();
   Vec3 best_ref = Vec3::Zero();
   for (Slab slab : kSlabs)

@@ -47,7 +47,8 @@ bool section_condition(const PrismGeom& g, const Vec3& a, const Vec3& b, const V
 
 // Π restricted to the prism: (u, v) of the fiber through p, and its depth
 // (min barycentric of p in the best tet; >= -tol means inside). nullopt when
-// p is outside by more than tol.
+// p is outside by more than tol. A p bitwise equal to middle[k] gets corner
+// k exactly ((0,0), (1,0), (0,1)), depth 0.
 std::optional<std::array<double, 2>> project_in(const PrismGeom& g, const Vec3& p, double tol, double* depth = nullptr);
 
 // Π⁻¹ restricted to the prism: where the fiber of (u, v) meets triangle
