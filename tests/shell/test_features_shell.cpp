@@ -140,6 +140,13 @@ FeaturedShell featured_shell_with(const mesh::SurfaceMesh& m, std::vector<std::a
   return out;
 }
 
+// The lowest-numbered vertex inside a chain (-1: none).
+int first_chain_vertex(const Shell& s) {
+  for (int v = 0; v < s.num_vertices(); ++v)
+    if (s.features.chain_of(v) >= 0) return v;
+  return -1;
+}
+
 FeaturedShell featured_shell(const mesh::SurfaceMesh& m, double angle) {
   return featured_shell_with(m, features::detect_feature_edges(m, mesh::build_edge_topology(m.faces), angle));
 }
@@ -234,9 +241,7 @@ TEST(ShellFeatures, CollapseAlongTheChainIsAcceptedAndTracked) {
   Shell& s = f.shell;
   ShellEditor editor(s);
   // The first interior chain vertex, collapsed into its next chain neighbour.
-  int from = -1;
-  for (int v = 0; v < s.num_vertices() && from < 0; ++v)
-    if (s.features.chain_of(v) >= 0) from = v;
+  const int from = first_chain_vertex(s);
   ASSERT_GE(from, 0);
   const int k = s.features.chain_of(from), to = s.features.next[from];
   const int edges_before = s.features.chain_edges[k];
@@ -265,9 +270,7 @@ TEST(ShellFeatures, FeatureDistanceIsMeasuredOnTheCurvedMiddleEdge) {
   auto f = featured_shell(flat_octahedron(2), 30);
   Shell& s = f.shell;
   ShellEditor editor(s);
-  int from = -1;
-  for (int v = 0; v < s.num_vertices() && from < 0; ++v)
-    if (s.features.chain_of(v) >= 0) from = v;
+  const int from = first_chain_vertex(s);
   ASSERT_GE(from, 0);
   auto cand = collapse_candidate(editor, from, s.features.next[from]);
   ASSERT_TRUE(cand.has_value());
