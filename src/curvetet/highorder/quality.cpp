@@ -118,19 +118,6 @@ TetQuality tet_quality(int order, const Eigen::Vector3d* nodes) {
   return q;
 }
 
-double tet_max_amips(int order, const Eigen::Vector3d* nodes, double bound) {
-  if (order < 1 || order > kMaxOrder) throw std::invalid_argument("tet_max_amips: order must be 1..8");
-  const TetSamples& samples = tet_samples(order);
-  const int n = tet_node_count(order);
-  // Fixed capacity (no heap allocation: this is the optimizer's inner loop).
-  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 165> x(3, n);
-  for (int i = 0; i < n; ++i) x.col(i) = nodes[i];
-  double worst = 0;
-  for (std::size_t k = samples.num_nodes; k < samples.gradients.size() && worst < bound; ++k)
-    worst = std::max(worst, amips(x.lazyProduct(samples.gradients[k])));
-  return worst;
-}
-
 double triangle_max_mips(int order, const Eigen::Vector3d* nodes) {
   const Quadrature rule = triangle_quadrature(order + 1);
   double m = 0;

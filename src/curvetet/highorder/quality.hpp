@@ -16,8 +16,6 @@
 // MIPS = tr(J_r^T J_r) / (2 sqrt(det(J_r^T J_r))); 1 for equilateral.
 #include <Eigen/Core>
 
-#include <limits>
-
 namespace curvetet::highorder {
 
 struct TetQuality {
@@ -27,12 +25,7 @@ struct TetQuality {
 };
 
 TetQuality tet_quality(int order, const Eigen::Vector3d* nodes);
-// Just tet_quality(...).max_amips, without the scaled Jacobians (the inner
-// loop of the curved optimization).
-// With `bound`: stops at the first sample reaching it (the result is then
-// >= bound, not the max), for callers that only compare against it.
-double tet_max_amips(int order, const Eigen::Vector3d* nodes,
-                     double bound = std::numeric_limits<double>::infinity());
+// (The curved optimization's inner loop uses highorder/amips_frames.hpp.)
 
 // Pointwise measures (J = dx/dxi, columns u, v, w).
 double scaled_jacobian(const Eigen::Matrix3d& j);
