@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 using namespace curvetet;
 using namespace curvetet::shell;
 
@@ -54,10 +56,11 @@ StarCandidate move_vertex(const Shell& s, int v, const Vec3& bottom, const Vec3&
 }
 
 std::optional<Rejection> run(Shell& s, StarCandidate c, double epsilon = 10, double quality = 100,
-                             const MiddleFit* fit = nullptr) {
+                             const MiddleFit* fit = nullptr,
+                             double slab_quality = std::numeric_limits<double>::infinity()) {
   ShellEditor editor(s);
   const LinearMiddle linear;
-  const StarContext ctx{editor, fit ? *fit : linear, epsilon, quality};
+  const StarContext ctx{editor, fit ? *fit : linear, epsilon, quality, slab_quality};
   return check_candidate(default_star_invariants(), ctx, c);
 }
 
@@ -80,6 +83,16 @@ TEST(CoarsenInvariants, QualityRejected) {
   // Vertex 1 pulled out to (5, 0): a needle; bound 1 < old max 1.15.
   const Vec3 d(4, 0, 0);
   EXPECT_EQ(run(s, move_vertex(s, 1, s.bottom[1] + d, s.middle[1] + d, s.top[1] + d), 10, 1.0), Rejection::quality);
+}
+
+TEST(CoarsenInvariants, SlabQualityRejected) {
+  // Lowering the middle of vertex 0 to z = -0.99 flattens the lower slab's
+  // tets on pillar 0 (AMIPS far above 20; the unit slab's worst is about 2).
+  Shell s = flat_prism();
+  const auto flatten = move_vertex(s, 0, s.bottom[0], Vec3(0, 0, -0.99), s.top[0]);
+  EXPECT_EQ(run(s, flatten, 10, 100, nullptr, 20.0), Rejection::slab_quality);
+  // Without the bound (the default) the same move passes this rule.
+  EXPECT_NE(run(s, flatten), Rejection::slab_quality);
 }
 
 TEST(CoarsenInvariants, PositivityRejected) {

@@ -14,6 +14,14 @@ double bbox_diagonal(const std::vector<Vec3>& points) {
   return (hi - lo).norm();
 }
 
+double mean_edge_length(const SurfaceMesh& mesh) {
+  if (mesh.faces.empty()) return 0.0;
+  double sum = 0;
+  for (const auto& f : mesh.faces)
+    for (int k = 0; k < 3; ++k) sum += (mesh.vertices[f[k]] - mesh.vertices[f[(k + 1) % 3]]).norm();
+  return sum / (3.0 * static_cast<double>(mesh.faces.size()));
+}
+
 SurfaceMesh to_surface_mesh(const PolygonSoup& soup) {
   SurfaceMesh m;
   m.vertices = soup.points;

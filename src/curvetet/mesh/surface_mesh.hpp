@@ -32,6 +32,10 @@ struct SurfaceMesh {
 // Axis-aligned bounding box diagonal length of the referenced-or-not vertices.
 double bbox_diagonal(const std::vector<Vec3>& points);
 
+// Mean length of the face edges (an edge shared by two faces counts twice);
+// 0 without faces.
+double mean_edge_length(const SurfaceMesh& mesh);
+
 // Copies a soup whose polygons are all triangles with in-range indices.
 // Precondition (checked by check::soup defects first): both hold.
 SurfaceMesh to_surface_mesh(const PolygonSoup& soup);

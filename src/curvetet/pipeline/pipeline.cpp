@@ -18,6 +18,20 @@
 namespace curvetet::pipeline {
 namespace {
 
+// Coarsening bounds of the output (measured on bunny_libigl, P = 4,
+// eps = 1%: docs/pipeline_e2e.md). The middle triangles' MIPS bound (the
+// shell's default is 30) and the slab rule keep sliver triangles and long
+// faces over thin parts (the ears) out: those made the flattest output
+// tets. The fill's collapses and flips may create tets up to AMIPS 100 (the
+// curved optimization improves them afterwards: a coarse fill is what makes
+// the output coarser than the reference's) but no edge longer than 4x the
+// mean bottom edge, so the interior refines with the surface as epsilon
+// drops (tests/fem/test_poisson_epsilon.cpp).
+constexpr double kMiddleQualityBound = 10;
+constexpr double kSlabQualityBound = 50;
+constexpr double kFillCoarsenEnergy = 100;
+constexpr double kFillEdgeFactor = 4;
+
 // The shell's middle surface as the assembly takes it: its fitted nodes, or
 // the flat triangles (degree 1) when it was not curved.
 volume::CurvedMiddle middle_of(const shell::Shell& s) {
@@ -37,7 +51,10 @@ mesh::LinearTetMesh fill_inside(const mesh::SurfaceMesh& bottom, double offset, 
   ex.target_thickness = offset;
   auto layer = shell::extrude_one_sided(bottom, shell::Side::inward, ex);
   volume::LayeredSurface ls{bottom, layer.offset, volume::OffsetSide::inward};
-  return volume::fill_layered(ls, {}, &stats);
+  volume::FillOptions fo;
+  fo.coarsen_energy = kFillCoarsenEnergy;
+  fo.max_edge_length = kFillEdgeFactor * mesh::mean_edge_length(bottom);
+  return volume::fill_layered(ls, fo, &stats);
 }
 
 // Between the top surface and a box (vertices [0, n) = the top's).
@@ -77,6 +94,8 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
     shell::CoarsenOptions co;
     co.epsilon = epsilon_rel;
     co.target_pillar = o.shell.extrusion.target_thickness;
+    co.quality_bound = kMiddleQualityBound;
+    co.slab_quality_bound = kSlabQualityBound;
     co.singular_dot = o.shell.extrusion.singular_dot;
     co.debug_invariants = o.shell.debug_invariants;
     // Middle of degree P-1 (paper §4.1); P = 2 keeps it flat.

@@ -316,7 +316,7 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   if (fit->degree() == 1 && !s.middle_nodes.empty())
     throw Error(ExitCode::internal, "coarsen_shell: a curved shell needs a curved middle fit");
   ShellEditor editor(s);
-  const StarContext ctx{editor, *fit, out.epsilon, o.quality_bound};
+  const StarContext ctx{editor, *fit, out.epsilon, o.quality_bound, o.slab_quality_bound};
   const auto invariants = default_star_invariants();
   const CollapseOp collapse;
   const FlipOp flip;
@@ -324,7 +324,6 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   const RefitOp refit;
   for (int round = 0; round < o.max_rounds; ++round) {
     out.rounds = round + 1;
-    long long collapsed = 0;
     std::vector<const Operation*> ops = {&collapse, &flip, &smooth};
     if (fit->degree() > 1) ops.push_back(&refit);
     std::unique_ptr<SplitOp> split;
@@ -332,21 +331,22 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
       split = std::make_unique<SplitOp>(o.split_factor * mean_edge_length(s));
       ops.push_back(split.get());
     }
-    const std::size_t round_start = out.passes.size();
+    const int before = s.num_prisms();
+    // The last round: collapses stalled (none accepted, or they removed less
+    // than min_round_gain of the faces). It skips the split, which would
+    // only leave faces behind; splits help a coarsening that still moves.
+    bool last = round + 1 == o.max_rounds;
     for (const Operation* op : ops) {
-      // Splits only help a coarsening that is still moving.
-      if (op->kind() == OpKind::split && collapsed == 0) continue;
+      if (op->kind() == OpKind::split && last) continue;
       auto st = run_pass(editor, *op, ctx, invariants, round);
-      if (op->kind() == OpKind::collapse) collapsed = st.accepted;
+      if (op->kind() == OpKind::collapse)
+        last = last || st.accepted == 0 || before - s.num_prisms() < o.min_round_gain * before;
       logger().info("coarsen round {} {}: {} -> {} faces, {}/{} accepted, {:.2f} s", round, to_string(st.op),
                     st.faces_before, st.faces_after, st.accepted, st.tried, st.seconds);
       out.passes.push_back(st);
       if (o.debug_invariants) debug_check(s, out.epsilon, fmt::format("coarsen round {} {}", round, to_string(st.op)));
     }
-    // Stop when collapses stall: none accepted, or the round removed less
-    // than min_round_gain of the faces (splits can re-add a few each round).
-    const int before = out.passes[round_start].faces_before;
-    if (collapsed == 0 || before - s.num_prisms() < o.min_round_gain * before) break;
+    if (last) break;
   }
   out.faces_after = s.num_prisms();
   out.vertices_after = s.num_vertices();

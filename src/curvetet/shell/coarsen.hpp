@@ -7,9 +7,9 @@
 // gain), smooth (every vertex once: pan / rotate / zoom), split (edges longer
 // than split_factor x the mean edge, longest first); with a curved middle
 // also refit (every vertex star's middle nodes fitted again, after smooth).
-// Rounds stop when a
-// round's collapse pass accepts nothing, when a round removes less than
-// min_round_gain of the faces, or after max_rounds.
+// A round whose collapse pass accepts nothing or removes less than
+// min_round_gain of the faces is the last, and skips its split (which would
+// only leave faces behind); so is round max_rounds.
 //
 // Every operation is a transaction (operations.hpp -> star_invariants.hpp ->
 // ShellEditor::commit). The scheduler batches non-overlapping stars (no
@@ -26,6 +26,7 @@
 #include "curvetet/shell/star.hpp"
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,9 @@ struct CoarsenOptions {
   double epsilon = 0.01;       // distance bound, relative to the input bbox diagonal
   double epsilon_abs = 0;      // absolute override when > 0
   double quality_bound = 30;   // MIPS of new middle triangles may reach max(old, this)
+  // AMIPS of the tets of new lower slabs may reach max(old, this): in thin
+  // regions the shell is thin, and long faces there make flat output tets.
+  double slab_quality_bound = std::numeric_limits<double>::infinity();
   double split_factor = 3.0;   // split edges longer than this x mean edge length (0: never)
   double target_pillar = 0.02; // zoom target, relative to the diagonal
   double singular_dot = 1e-3;  // as ExtrusionOptions::singular_dot

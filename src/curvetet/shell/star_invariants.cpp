@@ -5,6 +5,8 @@
 #include "curvetet/geometry/triangle_pair.hpp"
 
 #include "curvetet/geometry/predicates.hpp"
+#include "curvetet/highorder/quality.hpp"
+#include "curvetet/shell/prism_tets.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +33,7 @@ std::string_view to_string(Rejection r) {
     case Rejection::topology: return "topology";
     case Rejection::singular_adjacent: return "singular_adjacent";
     case Rejection::quality: return "quality";
+    case Rejection::slab_quality: return "slab_quality";
     case Rejection::prism_positivity: return "prism_positivity";
     case Rejection::coverage: return "coverage";
     case Rejection::section: return "section";
@@ -161,6 +164,48 @@ class MiddleQuality final : public StarInvariant {
       const auto& e = ctx.editor;
       if (!(mips(e.middle(c, t[0]), e.middle(c, t[1]), e.middle(c, t[2])) <= bound)) return false;
     }
+    return true;
+  }
+};
+
+// Worst linear AMIPS of the 12 tets of a lower slab (corners: bottom
+// 0..2, middle 3..5), skipping the tets whose whole pillar is pinched (the
+// assembly makes no tet there). +inf when one is flat or inverted.
+double slab_amips(const std::array<Vec3, 6>& corner, const std::array<bool, 3>& pinched) {
+  double worst = 0;
+  for (const auto& t : all_slab_tets()) {
+    if (pinched[t.pillar]) continue;
+    const auto& c = t.corners;
+    Eigen::Matrix3d j;
+    j << corner[c[1]] - corner[c[0]], corner[c[2]] - corner[c[0]], corner[c[3]] - corner[c[0]];
+    worst = std::max(worst, highorder::amips(j));
+  }
+  return worst;
+}
+
+class SlabQuality final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::slab_quality; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    if (!std::isfinite(ctx.slab_quality_bound)) return true;
+    const auto& e = ctx.editor;
+    const auto& s = e.shell();
+    const auto slab = [&](const std::array<int, 3>& f, auto bottom, auto middle) {
+      std::array<Vec3, 6> corner;
+      std::array<bool, 3> pinched;
+      for (int k = 0; k < 3; ++k) {
+        corner[k] = bottom(f[k]);
+        corner[k + 3] = middle(f[k]);
+        pinched[k] = corner[k] == corner[k + 3];
+      }
+      return slab_amips(corner, pinched);
+    };
+    double old_max = 0;
+    for (int f : c.removed)
+      old_max = std::max(old_max, slab(s.faces[f], [&](int v) { return s.bottom[v]; }, [&](int v) { return s.middle[v]; }));
+    const double bound = std::max(old_max, ctx.slab_quality_bound);
+    for (const auto& f : c.faces)
+      if (!(slab(f, [&](int v) { return e.bottom(c, v); }, [&](int v) { return e.middle(c, v); }) <= bound)) return false;
     return true;
   }
 };
@@ -315,6 +360,7 @@ InvariantList default_star_invariants() {
   InvariantList l;
   l.push_back(std::make_unique<SingularIsolation>());
   l.push_back(std::make_unique<MiddleQuality>());
+  l.push_back(std::make_unique<SlabQuality>());
   l.push_back(std::make_unique<PrismPositivity>());
   l.push_back(std::make_unique<Coverage>());
   l.push_back(std::make_unique<Section>());

@@ -7,6 +7,9 @@
 //  SingularIsolation  no new edge joins two singular vertices
 //  MiddleQuality      (ranking rule) max MIPS of the new middle triangles <=
 //                     max(old max, bound)
+//  SlabQuality        (ranking rule) max AMIPS of the 12 tets of the new
+//                     lower slabs (middle over bottom: the output's slab
+//                     tets come from them) <= max(old max, bound)
 //  PrismPositivity    invariant 1 on the new prisms (fills c.geoms)
 //  Coverage           every input face tracked by a removed prism meets some
 //                     new prism (fills c.tracked: the faces meeting it) and
@@ -28,6 +31,7 @@
 #include "curvetet/shell/shell_editor.hpp"
 #include "curvetet/shell/star.hpp"
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -39,6 +43,7 @@ struct StarContext {
   const MiddleFit& fit;
   double epsilon;        // absolute distance bound
   double quality_bound;  // MIPS bound of the ranking rule
+  double slab_quality_bound = std::numeric_limits<double>::infinity(); // AMIPS bound of the slab rule
 };
 
 class StarInvariant {

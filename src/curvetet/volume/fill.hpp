@@ -30,6 +30,14 @@ namespace curvetet::volume {
 struct FillOptions {
   double box_margin = 0.1; // outward: the box grows the bbox by this × diagonal on each side
   int optimize_rounds = 4; // AMIPS rounds (0: rounding only)
+  // 0: a collapse or 3-2 flip must not raise its star's largest AMIPS energy
+  // (best quality). > 0: it may, up to this energy, so the fill ends with
+  // fewer tets (the pipeline's fill, whose tets the curved optimization
+  // improves afterwards).
+  double coarsen_energy = 0;
+  // > 0: collapses and edge removals create no edge longer than this
+  // (absolute), so the interior is as fine as the surface asks for.
+  double max_edge_length = 0;
 };
 
 struct FillStats {

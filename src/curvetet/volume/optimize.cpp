@@ -38,7 +38,9 @@ constexpr double kFrozenTetLimit = 6.0;
 
 class Optimizer {
  public:
-  Optimizer(ExactTetMesh&& m, FillStats& stats) : m_(std::move(m)), stats_(stats) {
+  Optimizer(ExactTetMesh&& m, FillStats& stats, const FillOptions& options)
+      : m_(std::move(m)), stats_(stats), coarsen_energy_(options.coarsen_energy),
+        max_edge_length_(options.max_edge_length) {
     vt_.resize(m_.v.size());
     for (int t = 0; t < static_cast<int>(m_.tets.size()); ++t)
       for (int x : m_.tets[t]) vt_[x].push_back(t);
@@ -294,13 +296,16 @@ class Optimizer {
       if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
       const double e = energy(n);
       // A tet on frozen vertices only can never be smoothed: keep it good.
-      if (require_quality && e > kFrozenTetLimit && m_.frozen[n[0]] && m_.frozen[n[1]] && m_.frozen[n[2]] &&
+      if (require_quality && e > std::max(kFrozenTetLimit, coarsen_energy_) && m_.frozen[n[0]] && m_.frozen[n[1]] && m_.frozen[n[2]] &&
           m_.frozen[n[3]])
         return false;
       new_max = std::max(new_max, e);
+      if (require_quality)
+        for (int x : n)
+          if (x != u && too_long(u, x) && !edge_exists(u, x)) return false;
     }
     if (removed.empty()) return false; // not an edge
-    if (require_quality && !(new_max <= old_max)) return false;
+    if (require_quality && !(new_max <= std::max(old_max, coarsen_energy_))) return false;
     if (!link_condition(u, v)) return false;
     for (int t : removed) kill(t);
     for (int t : std::vector<int>(vt_[v])) {
@@ -316,11 +321,7 @@ class Optimizer {
   // --- flips ---
   // 3-2: interior edge (a, b) with exactly three tets around it.
   bool flip_32(int a, int b) {
-    std::vector<int> ring;
-    for (int t : vt_[a]) {
-      const Tet& q = m_.tets[t];
-      if (std::find(q.begin(), q.end(), b) != q.end()) ring.push_back(t);
-    }
+    const std::vector<int> ring = edge_ring(a, b);
     if (ring.size() != 3) return false;
     std::vector<int> others;
     for (int t : ring)
@@ -340,12 +341,142 @@ class Optimizer {
     if (sa == 0 || sb != -sa) return false;
     Tet t1 = sa > 0 ? Tet{c, d, e, a} : Tet{d, c, e, a};
     Tet t2 = sa > 0 ? Tet{d, c, e, b} : Tet{c, d, e, b};
-    if (!(std::max(energy(t1), energy(t2)) < old_max)) return false;
+    const double new_max = std::max(energy(t1), energy(t2));
+    if (!(new_max < old_max || new_max <= coarsen_energy_)) return false;
     for (int t : ring) kill(t);
     add(t1);
     add(t2);
     ++stats_.flips;
     return true;
+  }
+
+  // Edge removal then 3-2 flips (coarsening): interior edge (a, b) with a
+  // closed ring c0..c(k-1) of k = 4 or 5 tets is replaced by 2(k-2) tets
+  // (the ring polygon fanned from one c_i, joined to a and to b); that takes
+  // tets from the edges (a or b, c_m), and the whole change is kept only if
+  // 3-2 flips of those edges then leave fewer tets than before.
+  bool remove_edge_then_32(int a, int b) {
+    std::vector<int> ring = edge_ring(a, b);
+    const int k = static_cast<int>(ring.size());
+    if (k < 4 || k > 6) return false;
+    const auto c = ring_cycle(a, b, ring);
+    if (c.empty()) return false;
+    double old_max = 0;
+    for (int t : ring) old_max = std::max(old_max, energy(m_.tets[t]));
+    const double bound = std::max(old_max, coarsen_energy_);
+    for (int i = 0; i < k; ++i) {
+      const auto nt = fan_tets(a, b, c, i);
+      if (nt.empty()) continue;
+      double new_max = 0;
+      for (const auto& t : nt) new_max = std::max(new_max, energy(t));
+      if (!(new_max <= bound)) continue;
+      journal_.clear();
+      journaling_ = true;
+      ring = edge_ring(a, b); // an undone fan put back copies of the ring
+      for (int t : ring) kill(t);
+      for (const auto& t : nt) add(t);
+      int removed = 0;
+      for (bool progress = true; progress;) {
+        progress = false;
+        for (int m = 0; m < k; ++m)
+          for (int end : {a, b})
+            if (flip_32(end, c[m])) {
+              ++removed;
+              progress = true;
+            }
+      }
+      journaling_ = false;
+      if (removed > k - 4) { // 2(k-2) - removed < k
+        ++stats_.flips;
+        return true;
+      }
+      undo_journal();
+      // try the next fan
+    }
+    return false;
+  }
+
+  std::vector<int> edge_ring(int a, int b) const {
+    std::vector<int> ring;
+    for (int t : vt_[a]) {
+      const Tet& q = m_.tets[t];
+      if (std::find(q.begin(), q.end(), b) != q.end()) ring.push_back(t);
+    }
+    return ring;
+  }
+
+  // The ring of interior edge (a, b) (its tets `ring`) as a vertex cycle,
+  // empty when the fan around the edge is open (a boundary edge).
+  std::vector<int> ring_cycle(int a, int b, const std::vector<int>& ring) const {
+    std::vector<std::array<int, 2>> opp;
+    for (int t : ring) {
+      std::array<int, 2> e;
+      int j = 0;
+      for (int x : m_.tets[t])
+        if (x != a && x != b) e[j++] = x;
+      opp.push_back(e);
+    }
+    std::vector<int> c{opp[0][0], opp[0][1]};
+    std::vector<char> used(opp.size(), 0);
+    used[0] = 1;
+    while (c.size() < opp.size()) {
+      bool found = false;
+      for (std::size_t i = 0; i < opp.size() && !found; ++i)
+        if (!used[i] && (opp[i][0] == c.back() || opp[i][1] == c.back())) {
+          c.push_back(opp[i][0] == c.back() ? opp[i][1] : opp[i][0]);
+          used[i] = found = true;
+        }
+      if (!found) return {};
+    }
+    const auto& last = opp[std::find(used.begin(), used.end(), 0) - used.begin()];
+    const bool closes = (last[0] == c.back() && last[1] == c[0]) || (last[0] == c[0] && last[1] == c.back());
+    std::vector<int> sorted = c;
+    std::sort(sorted.begin(), sorted.end());
+    if (!closes || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return {};
+    return c;
+  }
+
+  // Tets of the ring polygon c fanned from c[i], joined to a and to b, all
+  // positive; empty when that is not a valid replacement: a fan diagonal
+  // is already an edge, or a and b do not lie on opposite sides of every
+  // fan triangle (then positive tets with the old boundary tile the old
+  // region exactly).
+  std::vector<Tet> fan_tets(int a, int b, const std::vector<int>& c, int i) const {
+    const int k = static_cast<int>(c.size());
+    for (int j = 2; j <= k - 2; ++j)
+      if (edge_exists(c[i], c[(i + j) % k]) || too_long(c[i], c[(i + j) % k])) return {};
+    std::vector<Tet> out;
+    int sign = 0;
+    for (int j = 1; j <= k - 2; ++j) {
+      Tet ta{c[i], c[(i + j) % k], c[(i + j + 1) % k], a}, tb{c[i], c[(i + j) % k], c[(i + j + 1) % k], b};
+      const int sa = m_.v.orient(ta[0], ta[1], ta[2], ta[3]), sb = m_.v.orient(tb[0], tb[1], tb[2], tb[3]);
+      if (sa == 0 || sb != -sa || (sign != 0 && sa != sign)) return {};
+      sign = sa;
+      if (sa < 0) std::swap(ta[0], ta[1]);
+      else std::swap(tb[0], tb[1]);
+      out.push_back(ta);
+      out.push_back(tb);
+    }
+    return out;
+  }
+
+  // Undoes the transaction recorded in journal_: the tets it added that are
+  // still alive go, and copies of the tets it killed that existed before it
+  // come back.
+  void undo_journal() {
+    const auto journal = std::move(journal_);
+    journal_.clear();
+    std::vector<int> added;
+    for (const auto& [t, was_added] : journal)
+      if (was_added) added.push_back(t);
+    std::sort(added.begin(), added.end());
+    for (const auto& [t, was_added] : journal)
+      if (was_added && alive_[t]) kill(t);
+    for (const auto& [t, was_added] : journal)
+      if (!was_added && !std::binary_search(added.begin(), added.end(), t)) {
+        const Tet copy = m_.tets[t]; // add() may reallocate m_.tets
+        add(copy);
+      }
   }
 
   // 2-3: interior face of tet t opposite its corner k.
@@ -425,6 +556,10 @@ class Optimizer {
  private:
   ExactTetMesh m_;
   FillStats& stats_;
+  double coarsen_energy_;  // FillOptions::coarsen_energy
+  double max_edge_length_; // FillOptions::max_edge_length
+  bool journaling_ = false;
+  std::vector<std::pair<int, bool>> journal_; // (tet, added) of the open transaction
   std::vector<std::vector<int>> vt_;
   std::vector<char> alive_;
   std::vector<char> pinned_;
@@ -488,19 +623,26 @@ class Optimizer {
     return ce.empty();
   }
 
+  // Whether a new edge (a, b) would break the sizing bound.
+  bool too_long(int a, int b) const {
+    return max_edge_length_ > 0 && (m_.v.d[a] - m_.v.d[b]).norm() > max_edge_length_;
+  }
   bool orient_positive(Tet& t) const { return m_.v.orient(t[0], t[1], t[2], t[3]) > 0; }
   void kill(int t) {
+    if (journaling_) journal_.emplace_back(t, false);
     alive_[t] = 0;
     for (int x : m_.tets[t]) {
       auto& l = vt_[x];
       l.erase(std::find(l.begin(), l.end(), t));
     }
   }
-  void add(const Tet& t) {
+  int add(const Tet& t) {
     const int id = num_tets();
     m_.tets.push_back(t);
     alive_.push_back(1);
     for (int x : t) vt_[x].push_back(id);
+    if (journaling_) journal_.emplace_back(id, true);
+    return id;
   }
   bool edge_exists(int a, int b) const {
     for (int t : vt_[a]) {
@@ -637,6 +779,23 @@ void flip_pass(Optimizer& o, double threshold) {
   }
 }
 
+// 3-2 flips (alone or after an edge removal) wherever they keep the energy
+// bound: each removes a tet.
+std::size_t flip_32_pass(Optimizer& o) {
+  auto& m = o.mesh();
+  const std::size_t before = o.mesh().tets.size();
+  std::size_t flips = 0;
+  for (std::size_t t = 0; t < before; ++t) {
+    if (!o.alive(static_cast<int>(t))) continue;
+    const auto q = m.tets[t];
+    bool done = false;
+    for (int i = 0; i < 4 && !done; ++i)
+      for (int j = i + 1; j < 4 && !done; ++j) done = o.flip_32(q[i], q[j]) || o.remove_edge_then_32(q[i], q[j]);
+    flips += done;
+  }
+  return flips;
+}
+
 // Worst-tet passes: the free vertices of the tets whose energy is within a
 // factor of the current maximum (those decide the max AMIPS).
 void worst_pass(Optimizer& o, int passes) {
@@ -667,7 +826,7 @@ void smooth_pass(Optimizer& o) {
 } // namespace
 
 mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const FillOptions& options, FillStats& stats) {
-  Optimizer o(std::move(m), stats);
+  Optimizer o(std::move(m), stats, options);
   std::size_t on_surface = surface_steiner_pass(o);
   std::size_t left = o.round_pass();
   stats.unrounded_after_first_pass = left;
@@ -678,6 +837,15 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
     left = o.round_pass();
     logger().debug("volume: optimize round {}: {} collapses, {} flips, {} smooths, {} unrounded", round,
                    stats.collapses, stats.flips, stats.smooths, left);
+  }
+  // Coarsening: collapses and 3-2 flips within the energy bound until
+  // neither removes a tet.
+  for (int round = 0; options.coarsen_energy > 0 && round < 10; ++round) {
+    const std::size_t collapses = stats.collapses;
+    collapse_pass(o, false);
+    const std::size_t flips = flip_32_pass(o);
+    smooth_pass(o);
+    if (stats.collapses == collapses && flips == 0) break;
   }
   if (options.optimize_rounds > 0) worst_pass(o, 8);
   // Whatever is still rational: remove it or move it to a double position.
