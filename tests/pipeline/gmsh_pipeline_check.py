@@ -159,9 +159,9 @@ def point_triangle_distance(p, a, b, c):
 def candidate_pairs(verts, points, tris, r):
     """(vertex, sub-triangle) pairs covering every pair closer than r."""
     corners = points[tris]  # (n, 3, 3)
-    # Grid step: r, or the largest triangle extent if larger (few cells per
-    # triangle either way).
-    step = max(r, (corners.max(axis=1) - corners.min(axis=1)).max())
+    # Grid step: r, or most triangles' extent if larger: few cells per
+    # triangle, and a few long triangles do not make every cell hold all.
+    step = max(r, np.percentile((corners.max(axis=1) - corners.min(axis=1)).max(axis=1), 95))
     lo = np.floor((corners.min(axis=1) - r) / step).astype(np.int64)
     hi = np.floor((corners.max(axis=1) + r) / step).astype(np.int64)
     base = min(lo.min(), np.floor(verts.min() / step).astype(np.int64)) - 1
@@ -200,10 +200,11 @@ def check_distance(input_path, epsilon, segments):
         return
     rows, cands = candidate_pairs(verts, points, tris, epsilon * diag)
     best = np.full(len(verts), np.inf)
-    if len(rows):
-        d = point_triangle_distance(verts[rows], points[tris[cands, 0]], points[tris[cands, 1]],
-                                    points[tris[cands, 2]])
-        np.minimum.at(best, rows, d)
+    chunk = 1 << 22  # pairs evaluated at once (bounded memory)
+    for k in range(0, len(rows), chunk):
+        r, c = rows[k:k + chunk], cands[k:k + chunk]
+        d = point_triangle_distance(verts[r], points[tris[c, 0]], points[tris[c, 1]], points[tris[c, 2]])
+        np.minimum.at(best, r, d)
     worst = best.max() / diag
     print(f"distance: {len(verts)} input vertices, {len(tris)} boundary sub-triangles, {len(rows)} pairs; "
           f"max {worst:.4g}, mean {best[np.isfinite(best)].mean() / diag:.4g} (x bbox diagonal), epsilon {epsilon}")
