@@ -85,7 +85,8 @@ class CurvedOptimizer {
   const std::vector<double>& scaled_jacobians() const { return sj_; }
 
   // One sweep over the bad tets, worst first: max AMIPS >= threshold, or
-  // min scaled Jacobian below options.min_scaled_jacobian. Every node of a
+  // min scaled Jacobian below options.min_scaled_jacobian (the worst
+  // options.max_bad_tets of them). Every node of a
   // bad tet is a candidate move, once per sweep; the candidates go in
   // batches of moves with disjoint touched tets, which are tried in
   // parallel: a move reads and writes only its touched tets and nodes (a
@@ -102,6 +103,7 @@ class CurvedOptimizer {
     for (int t = 0; t < m_.num_tets(); ++t)
       if (is_bad(t)) bad.push_back(t);
     std::stable_sort(bad.begin(), bad.end(), [&](int a, int b) { return badness(a) > badness(b); });
+    if (bad.size() > o_.max_bad_tets) bad.resize(o_.max_bad_tets);
     // Candidates (bad tet, local node) in order; each node once.
     std::vector<std::pair<int, int>> pending;
     std::vector<char> listed(m_.nodes.size(), 0);
@@ -457,7 +459,8 @@ CurvedOptimizeStats optimize_curved(mesh::TetMesh& m, const CurvedOptimizeOption
     const auto min_sj = [&] { return *std::min_element(opt.scaled_jacobians().begin(), opt.scaled_jacobians().end()); };
     for (int pass = 0; pass < o.passes; ++pass) {
       std::vector<double> sorted = opt.amips();
-      const std::size_t k = std::min(sorted.size() - 1, static_cast<std::size_t>(o.bad_fraction * sorted.size()));
+      const std::size_t k = std::min({sorted.size() - 1, static_cast<std::size_t>(o.bad_fraction * sorted.size()),
+                                      std::max<std::size_t>(o.max_bad_tets, 1) - 1});
       std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end(), std::greater<>());
       const double threshold = std::max(o.min_amips, sorted[k]);
       const int moves = stats.vertex_moves + stats.node_moves;

@@ -37,6 +37,7 @@ struct CurvedOptimizeOptions {
   double min_gain = 0.01;       // a pass that lowers the max AMIPS and raises the min scaled Jacobian by less
                                 // than this fraction is the last
   double bad_fraction = 0.25;   // a sweep visits tets whose max AMIPS >= this quantile from the top...
+  std::size_t max_bad_tets = 8192; // ...the worst this many at most (both goals: a big mesh's sweep stays bounded)...
   double min_amips = 4.0;       // ...and above this value
   double min_scaled_jacobian = 0.05; // a sweep also raises tets below this min scaled Jacobian, and no move
                                      // takes a tet below it (or below its own value when already lower)

@@ -351,10 +351,10 @@ class Optimizer {
   }
 
   // Edge removal then 3-2 flips (coarsening): interior edge (a, b) with a
-  // closed ring c0..c(k-1) of k = 4 or 5 tets is replaced by 2(k-2) tets
+  // closed ring c0..c(k-1) of k = 4..6 tets is replaced by 2(k-2) tets
   // (the ring polygon fanned from one c_i, joined to a and to b); that takes
   // tets from the edges (a or b, c_m), and the whole change is kept only if
-  // 3-2 flips of those edges then leave fewer tets than before.
+  // 3-2 flips of those edges then leave fewer than k tets.
   bool remove_edge_then_32(int a, int b) {
     std::vector<int> ring = edge_ring(a, b);
     const int k = static_cast<int>(ring.size());
