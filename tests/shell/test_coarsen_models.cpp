@@ -9,9 +9,11 @@
 #include "curvetet/shell/build.hpp"
 #include "curvetet/shell/coarsen.hpp"
 #include "curvetet/shell/invariants.hpp"
+#include "curvetet/shell/star_invariants.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 using namespace curvetet;
@@ -53,6 +55,33 @@ TEST(CoarsenModels, DebugInvariantsOnSphere) {
   const auto st = coarsen_shell(built.shell, o);
   expect_valid_coarse_shell(built.shell, st);
   EXPECT_LT(st.faces_after * 4, st.faces_before);
+}
+
+// The slab rule under the global checker, with a bound it must enforce (the
+// sphere coarsened without it reaches a worst slab of 4.05): the worst lower
+// slab never exceeds max(the uncoarsened shell's worst, 2.5); and the last
+// pass is no split (it would leave faces behind).
+TEST(CoarsenModels, SlabRuleBoundsTheWorstSlab) {
+  auto built = build_shell(test::sphere(4));
+  const auto worst_slab = [](const Shell& s) {
+    double w = 0;
+    for (const auto& f : s.faces)
+      w = std::max(w, lower_slab_amips({s.bottom[f[0]], s.bottom[f[1]], s.bottom[f[2]]},
+                                       {s.middle[f[0]], s.middle[f[1]], s.middle[f[2]]}));
+    return w;
+  };
+  const double before = worst_slab(built.shell);
+  CoarsenOptions o;
+  o.debug_invariants = true;
+  o.slab_quality_bound = 2.5;
+  const auto st = coarsen_shell(built.shell, o);
+  expect_valid_coarse_shell(built.shell, st);
+  EXPECT_LT(st.faces_after * 2, st.faces_before);
+  EXPECT_LE(worst_slab(built.shell), std::max(before, 2.5));
+  std::printf("worst slab before %g after %g, %d -> %d faces\n", before, worst_slab(built.shell), st.faces_before,
+              st.faces_after);
+  ASSERT_FALSE(st.passes.empty());
+  EXPECT_NE(st.passes.back().op, OpKind::split);
 }
 
 TEST(CoarsenModels, SameResultForOneAndTwoThreads) {

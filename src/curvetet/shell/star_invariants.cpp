@@ -47,6 +47,23 @@ std::string_view to_string(Rejection r) {
   return "?";
 }
 
+double lower_slab_amips(const std::array<Vec3, 3>& bottom, const std::array<Vec3, 3>& middle) {
+  std::array<Vec3, 6> corner;
+  for (int k = 0; k < 3; ++k) {
+    corner[k] = bottom[k];
+    corner[k + 3] = middle[k];
+  }
+  double worst = 0;
+  for (const auto& t : all_slab_tets()) {
+    if (bottom[t.pillar] == middle[t.pillar]) continue;
+    const auto& c = t.corners;
+    Eigen::Matrix3d j;
+    j << corner[c[1]] - corner[c[0]], corner[c[2]] - corner[c[0]], corner[c[3]] - corner[c[0]];
+    worst = std::max(worst, highorder::amips(j));
+  }
+  return worst;
+}
+
 double mips(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double area = 0.5 * (b - a).cross(c - a).norm();
   if (!(area > 0)) return std::numeric_limits<double>::infinity();
@@ -168,21 +185,6 @@ class MiddleQuality final : public StarInvariant {
   }
 };
 
-// Worst linear AMIPS of the 12 tets of a lower slab (corners: bottom
-// 0..2, middle 3..5), skipping the tets whose whole pillar is pinched (the
-// assembly makes no tet there). +inf when one is flat or inverted.
-double slab_amips(const std::array<Vec3, 6>& corner, const std::array<bool, 3>& pinched) {
-  double worst = 0;
-  for (const auto& t : all_slab_tets()) {
-    if (pinched[t.pillar]) continue;
-    const auto& c = t.corners;
-    Eigen::Matrix3d j;
-    j << corner[c[1]] - corner[c[0]], corner[c[2]] - corner[c[0]], corner[c[3]] - corner[c[0]];
-    worst = std::max(worst, highorder::amips(j));
-  }
-  return worst;
-}
-
 class SlabQuality final : public StarInvariant {
  public:
   Rejection reason() const override { return Rejection::slab_quality; }
@@ -191,14 +193,7 @@ class SlabQuality final : public StarInvariant {
     const auto& e = ctx.editor;
     const auto& s = e.shell();
     const auto slab = [&](const std::array<int, 3>& f, auto bottom, auto middle) {
-      std::array<Vec3, 6> corner;
-      std::array<bool, 3> pinched;
-      for (int k = 0; k < 3; ++k) {
-        corner[k] = bottom(f[k]);
-        corner[k + 3] = middle(f[k]);
-        pinched[k] = corner[k] == corner[k + 3];
-      }
-      return slab_amips(corner, pinched);
+      return lower_slab_amips({bottom(f[0]), bottom(f[1]), bottom(f[2])}, {middle(f[0]), middle(f[1]), middle(f[2])});
     };
     double old_max = 0;
     for (int f : c.removed)

@@ -31,6 +31,7 @@
 #include "curvetet/shell/shell_editor.hpp"
 #include "curvetet/shell/star.hpp"
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -69,5 +70,11 @@ bool caps_free_of_batch(const StarContext& ctx, const StarCandidate& c, int batc
 // MIPS energy of a triangle: (|e0|^2+|e1|^2+|e2|^2) / (4 sqrt(3) area),
 // 1 for equilateral, +inf when degenerate. Ranking only (double).
 double mips(const Vec3& a, const Vec3& b, const Vec3& c);
+
+// Worst linear AMIPS of the 12 tets of the lower slab of a face (bottom
+// corners under middle corners), skipping tets whose whole pillar is pinched
+// (the assembly makes none there); +inf when one is flat or inverted.
+// Ranking only (double; SlabQuality).
+double lower_slab_amips(const std::array<Vec3, 3>& bottom, const std::array<Vec3, 3>& middle);
 
 } // namespace curvetet::shell
