@@ -63,7 +63,7 @@ TEST(PoissonEpsilon, SmallerEpsilonGivesFinerMeshAndLowerError) {
   EXPECT_GT(coarse.coarsen_distance, 0.5 * 0.02);
   EXPECT_GT(fine.boundary_triangles, 2 * coarse.boundary_triangles);
   EXPECT_GT(fine.dofs, 2 * coarse.dofs);
-  // The error follows (measured relative 0.028 -> 0.0103).
+  // The error follows (measured relative 0.040 -> 0.0107).
   EXPECT_LT(fine.error, 0.6 * coarse.error);
   EXPECT_LT(fine.relative, 0.015);
   EXPECT_LT(coarse.relative, 0.05);
