@@ -231,8 +231,8 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
   // straight, which a curved middle can invert (nefertiti: 20 of 16218).
   // A flat middle's tets are straight, positive by the prism invariant.
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  logger().warn("{} assembled tets are not certified positive with the curved middle (next to singular vertices); "
-                "running again with a flat middle",
+  logger().warn("{} assembled tets are not certified positive with the curved middle; running again with a flat "
+                "middle",
                 uncertified);
   PipelineOptions flat = o;
   flat.curved_middle = false;
