@@ -150,3 +150,17 @@ TEST(CurvedOptimize, ThreadCountDoesNotChangeTheResult) {
   }
   EXPECT_EQ(a.nodes, b.nodes);
 }
+
+TEST(CurvedOptimize, SweepCapVisitsOnlyTheWorstTets) {
+  auto all = bad_mesh(4), capped = all;
+  volume::CurvedOptimizeOptions o;
+  o.bad_fraction = 1.0;
+  const auto full = volume::optimize_curved(all, o);
+  o.max_bad_tets = 1; // only the worst tet's nodes are candidates in each sweep
+  const auto one = volume::optimize_curved(capped, o);
+  EXPECT_GT(one.vertex_moves + one.node_moves, 0);
+  EXPECT_LT(one.vertex_moves + one.node_moves, full.vertex_moves + full.node_moves);
+  EXPECT_LT(one.max_amips_after, one.max_amips_before);
+  const auto v = check::verify_tet_mesh(capped);
+  EXPECT_TRUE(v.ok()) << v.text();
+}
