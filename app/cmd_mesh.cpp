@@ -11,9 +11,8 @@
 #include "curvetet/io/vtu.hpp"
 #include "curvetet/map/build_map.hpp"
 #include "curvetet/map/transfer.hpp"
+#include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/pipeline/pipeline.hpp"
-
-#include <Eigen/Geometry>
 
 #include <map>
 #include <memory>
@@ -93,9 +92,7 @@ std::function<int()> add_mesh_options(CLI::App& root) {
           io::write_map(o->map_path, bmap);
           // Distances relative to the input's bbox diagonal, like epsilon.
           const auto dist = map::map_distances(bmap);
-          Eigen::AlignedBox3d box;
-          for (const auto& x : bmap.input.vertices) box.extend(x);
-          const double diag = box.diagonal().norm();
+          const double diag = mesh::bbox_diagonal(bmap.input.vertices);
           report["map"] = {{"path", o->map_path},
                            {"boundary_nodes", stats.nodes},
                            {"triangles", stats.triangles},

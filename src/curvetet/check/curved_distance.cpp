@@ -53,19 +53,18 @@ std::vector<double> distances_to_curved_boundary(const mesh::TetMesh& m, const B
     const auto& uvs = lin.source_uv[f];
     Vec2 uv = clamp_to_triangle(w[0] * uvs[0] + w[1] * uvs[1] + w[2] * uvs[2]);
     const mesh::Vec3& q = queries[i];
-    double best = (highorder::triangle_point(m.order, nodes.data(), uv) - q).norm();
+    mesh::Vec3 r = highorder::triangle_point(m.order, nodes.data(), uv) - q; // residual at uv
     for (int it = 0; it < 16; ++it) {
-      const mesh::Vec3 r = highorder::triangle_point(m.order, nodes.data(), uv) - q;
       const Eigen::Matrix<double, 3, 2> j = highorder::triangle_jacobian(m.order, nodes.data(), uv);
       const Vec2 step = -(j.transpose() * j).ldlt().solve(j.transpose() * r);
       if (!step.allFinite()) break;
       const Vec2 next = clamp_to_triangle(uv + step);
-      const double d = (highorder::triangle_point(m.order, nodes.data(), next) - q).norm();
-      if (!(d < best)) break;
-      best = d;
+      const mesh::Vec3 r_next = highorder::triangle_point(m.order, nodes.data(), next) - q;
+      if (!(r_next.norm() < r.norm())) break;
+      r = r_next;
       uv = next;
     }
-    out[i] = best;
+    out[i] = r.norm();
   });
   return out;
 }

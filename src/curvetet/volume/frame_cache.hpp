@@ -38,7 +38,7 @@ class FrameCache {
       slot_of_[t] = used_;
       tet_of_slot_[used_++] = t;
     }
-    return &storage_[static_cast<std::size_t>(slot_of_[t]) * points_];
+    return cached_frames(t);
   }
 
   // Frames of a cached tet (no bookkeeping: safe from several threads).
