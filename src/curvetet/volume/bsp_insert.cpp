@@ -1,5 +1,7 @@
 #include "curvetet/volume/bsp_insert.hpp"
 
+#include "curvetet/volume/homogeneous.hpp"
+
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
 #include "curvetet/geometry/predicates.hpp"
@@ -27,6 +29,7 @@ struct Plane {
   int ids[3] = {-1, -1, -1};     // their vertex ids (known to be on the plane)
   Vec3 a;
   mpq_class n[3];
+  HPlane h;     // the same plane in integers, for the exact side tests
   Vec3 nd;      // n rounded toward zero
   double nd_l1; // |nd|_1
 };
@@ -39,6 +42,7 @@ Plane make_plane(const Vec3& a, const mpq_class n[3]) {
     p.nd[i] = n[i].get_d();
   }
   p.nd_l1 = p.nd.cwiseAbs().sum();
+  p.h = to_hplane(to_q(a), n);
   return p;
 }
 
@@ -50,53 +54,47 @@ void cross(const mpq_class u[3], const mpq_class v[3], mpq_class out[3]) {
 
 // A surface triangle as seen by the cut filter: its plane, and the planes
 // through its edges perpendicular to it, normals pointing away from it.
+// A rational point with its double approximation (coordinates within 4u
+// relative of the exact ones) for the floating filters.
+struct Point {
+  HPoint h;
+  Vec3 d;
+};
+Point make_point(HPoint h) {
+  const Vec3 d = approximate(h);
+  return {std::move(h), d};
+}
+
 struct TriangleShape {
   const Plane* plane = nullptr;
   Plane edge[3];
-  QPoint corner[3];
+  Point corner[3];
 };
 
-mpq_class value_q(const Plane& p, const QPoint& q) {
-  return p.n[0] * (q.c[0] - p.a[0]) + p.n[1] * (q.c[1] - p.a[1]) + p.n[2] * (q.c[2] - p.a[2]);
-}
-
-// Exact side of a rational point (double filter first, as Complex::side).
-int side_q(const Plane& p, const QPoint& q) {
-  const Vec3 x(q.c[0].get_d(), q.c[1].get_d(), q.c[2].get_d());
-  const double s = p.nd.dot(x - p.a);
-  const double m = std::max(x.cwiseAbs().maxCoeff(), p.a.cwiseAbs().maxCoeff());
-  const double bound = 128 * std::numeric_limits<double>::epsilon() / 2 * p.nd_l1 * m;
+// Exact side of a point (double filter first).
+int side_of(const Plane& p, const Point& x) {
+  const double s = p.nd.dot(x.d - p.a);
+  const double m = std::max(x.d.cwiseAbs().maxCoeff(), p.a.cwiseAbs().maxCoeff());
+  const double bound = 128 * kUnit * p.nd_l1 * m;
   if (s > bound) return 1;
   if (s < -bound) return -1;
-  return sgn(value_q(p, q));
+  return sgn(value(p.h, x.h));
 }
 
-// sign(((q - p) x (x - p)) . n)
-bool same_point(const QPoint& a, const QPoint& b) { return a.c[0] == b.c[0] && a.c[1] == b.c[1] && a.c[2] == b.c[2]; }
-
-int orient_in_plane(const QPoint& p, const QPoint& q, const QPoint& x, const mpq_class n[3]) {
-  if (same_point(x, p) || same_point(x, q)) return 0;
+// sign(((q - p) x (x - p)) . n), n the normal of plane pl.
+int orient_in_plane(const Point& p, const Point& q, const Point& x, const Plane& pl) {
+  if (&x == &p || &x == &q) return 0;
   {
-    // double filter: coordinates within 2u|.| of the exact ones, n likewise
-    const Vec3 pd(p.c[0].get_d(), p.c[1].get_d(), p.c[2].get_d());
-    const Vec3 qd(q.c[0].get_d(), q.c[1].get_d(), q.c[2].get_d());
-    const Vec3 xd(x.c[0].get_d(), x.c[1].get_d(), x.c[2].get_d());
-    const Vec3 nd(n[0].get_d(), n[1].get_d(), n[2].get_d());
-    const Vec3 u = qd - pd, w = xd - pd;
-    const double val = u.cross(w).dot(nd);
-    const double m = std::max({pd.cwiseAbs().maxCoeff(), qd.cwiseAbs().maxCoeff(), xd.cwiseAbs().maxCoeff()});
+    // double filter: coordinates within 4u|.| of the exact ones, n within u
+    const Vec3 u = q.d - p.d, w = x.d - p.d;
+    const double val = u.cross(w).dot(pl.nd);
+    const double m = std::max({p.d.cwiseAbs().maxCoeff(), q.d.cwiseAbs().maxCoeff(), x.d.cwiseAbs().maxCoeff()});
     const double a = u.cwiseAbs().maxCoeff(), b = w.cwiseAbs().maxCoeff();
-    const double bound = 1024 * 1.1102230246251565e-16 * nd.cwiseAbs().sum() * (m * (a + b) + a * b + m * m * 1e-300);
+    const double bound = 1024 * kUnit * pl.nd_l1 * (m * (a + b) + a * b + m * m * 1e-300);
     if (val > bound) return 1;
     if (val < -bound) return -1;
   }
-  mpq_class u[3], w[3], c[3];
-  for (int k = 0; k < 3; ++k) {
-    u[k] = q.c[k] - p.c[k];
-    w[k] = x.c[k] - p.c[k];
-  }
-  cross(u, w, c);
-  return sgn(c[0] * n[0] + c[1] * n[1] + c[2] * n[2]);
+  return exact::orient_in_plane(p.h, q.h, x.h, pl.h.n);
 }
 
 std::uint64_t edge_key(int a, int b) {
@@ -123,7 +121,7 @@ class Complex {
   std::size_t num_cuts = 0;
 
   explicit Complex(const BackgroundMesh& bg) {
-    for (const auto& p : bg.points) v.add(p);
+    for (const auto& p : bg.points) add_point(p);
     std::unordered_map<std::uint64_t, int> face_of; // sorted triple -> face
     auto tri_key = [](int a, int b, int c) {
       int s[3] = {a, b, c};
@@ -151,21 +149,30 @@ class Complex {
     }
   }
 
+  // v with each vertex's homogeneous form (same order).
+  std::vector<Point> points;
+
+  int add_point(const Vec3& p) {
+    v.add(p);
+    points.push_back({to_h(to_q(p)), p});
+    return v.size() - 1;
+  }
+  int add_point(HPoint p) {
+    normalize(p);
+    v.add(to_q(p));
+    points.push_back({std::move(p), v.d.back()});
+    return v.size() - 1;
+  }
+  // Where edge ab (a and b strictly on opposite sides of p) meets p.
+  Point edge_crossing(int a, int b, const Plane& p) const {
+    return make_point(crossing(points[a].h, points[b].h, value(p.h, points[a].h), value(p.h, points[b].h)));
+  }
+
   // Exact side of vertex i (double filter first).
   int side(const Plane& p, int i) const {
     if (i == p.ids[0] || i == p.ids[1] || i == p.ids[2]) return 0;
     if (p.through_triangle && v.exact[i]) return geometry::orient3d(p.tri[0], p.tri[1], p.tri[2], v.d[i]);
-    const Vec3& x = v.d[i];
-    const double s = p.nd.dot(x - p.a);
-    const double m = std::max(x.cwiseAbs().maxCoeff(), p.a.cwiseAbs().maxCoeff());
-    const double bound = 128 * kUnit * p.nd_l1 * m;
-    if (s > bound) return 1;
-    if (s < -bound) return -1;
-    return sgn(value(p, i));
-  }
-  mpq_class value(const Plane& p, int i) const {
-    const QPoint& q = v.q[i];
-    return p.n[0] * (q.c[0] - p.a[0]) + p.n[1] * (q.c[1] - p.a[1]) + p.n[2] * (q.c[2] - p.a[2]);
+    return side_of(p, points[i]);
   }
 
   // Vertices of cell c (each once).
@@ -199,11 +206,7 @@ class Complex {
     for (std::size_t k = 0; k < l.size(); ++k) {
       const int a = l[k], b = l[(k + 1) % l.size()];
       if (sgn_[a] * sgn_[b] >= 0) continue;
-      const mpq_class va = value(p, a), vb = value(p, b);
-      const mpq_class t = va / (va - vb);
-      QPoint w;
-      for (int i = 0; i < 3; ++i) w.c[i] = v.q[a].c[i] + t * (v.q[b].c[i] - v.q[a].c[i]);
-      const int wi = v.add(w);
+      const int wi = add_point(edge_crossing(a, b, p).h);
       touch(wi);
       sgn_[wi] = 0;
       split_edge(a, b, wi);
@@ -245,13 +248,10 @@ class Complex {
     }
     std::sort(crossing.begin(), crossing.end());
     crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
-    std::vector<QPoint> wq(crossing.size());
-    for (std::size_t e = 0; e < crossing.size(); ++e) {
-      const int a = static_cast<int>(crossing[e] >> 32), b = static_cast<int>(crossing[e] & 0xffffffffu);
-      const mpq_class va = value(p, a), vb = value(p, b);
-      const mpq_class t = va / (va - vb);
-      for (int i = 0; i < 3; ++i) wq[e].c[i] = v.q[a].c[i] + t * (v.q[b].c[i] - v.q[a].c[i]);
-    }
+    std::vector<Point> wq;
+    wq.reserve(crossing.size());
+    for (auto key : crossing)
+      wq.push_back(edge_crossing(static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu), p));
     // 2. Skip the cut when the triangle misses the cell's interior: then it
     // misses the relative interior of the section S, and some edge line of S
     // or of the triangle separates them in the plane (2D separating axes).
@@ -260,7 +260,7 @@ class Complex {
     // 3. Split the crossing edges everywhere they appear.
     for (std::size_t e = 0; e < crossing.size(); ++e) {
       const int a = static_cast<int>(crossing[e] >> 32), b = static_cast<int>(crossing[e] & 0xffffffffu);
-      const int wi = v.add(wq[e]);
+      const int wi = add_point(std::move(wq[e].h));
       touch(wi);
       sgn_[wi] = 0;
       split_edge(a, b, wi);
@@ -356,38 +356,38 @@ class Complex {
   unsigned stamp_ = 0;
   std::unordered_map<std::uint64_t, std::vector<int>> edge_faces_;
 
-  bool separated(int c, const std::vector<std::uint64_t>& crossing, const std::vector<QPoint>& wq,
+  bool separated(int c, const std::vector<std::uint64_t>& crossing, const std::vector<Point>& wq,
                  const TriangleShape& tri) {
     // Section points: cell vertices on the plane, and the crossing points.
-    std::vector<const QPoint*> pts;
+    std::vector<const Point*> pts;
     for (int f : cells[c])
       for (int i : faces[f].loop)
-        if (sgn_[i] == 0) pts.push_back(&v.q[i]);
+        if (sgn_[i] == 0) pts.push_back(&points[i]);
     std::sort(pts.begin(), pts.end());
     pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
     for (const auto& w : wq) pts.push_back(&w);
     for (const auto& e : tri.edge) {
       bool all_out = true;
-      for (const QPoint* q : pts)
-        if (side_q(e, *q) < 0) {
+      for (const Point* q : pts)
+        if (side_of(e, *q) < 0) {
           all_out = false;
           break;
         }
       if (all_out) return true;
     }
     // Edges of S: per face of the cell, its two section points.
-    auto wpoint = [&](int a, int b) -> const QPoint* {
+    auto wpoint = [&](int a, int b) -> const Point* {
       const auto it = std::lower_bound(crossing.begin(), crossing.end(), edge_key(a, b));
       return &wq[it - crossing.begin()];
     };
     for (int f : cells[c]) {
       const auto& l = faces[f].loop;
-      const QPoint* ends[2];
+      const Point* ends[2];
       int m = 0;
       for (std::size_t k = 0; k < l.size() && m <= 2; ++k) {
         const int a = l[k], b = l[(k + 1) % l.size()];
         if (sgn_[a] == 0) {
-          if (m < 2) ends[m] = &v.q[a];
+          if (m < 2) ends[m] = &points[a];
           ++m;
         }
         if (sgn_[a] * sgn_[b] < 0) {
@@ -397,14 +397,14 @@ class Complex {
       }
       if (m != 2) continue;
       int ref = 0;
-      for (const QPoint* q : pts) {
-        ref = orient_in_plane(*ends[0], *ends[1], *q, tri.plane->n);
+      for (const Point* q : pts) {
+        ref = orient_in_plane(*ends[0], *ends[1], *q, *tri.plane);
         if (ref != 0) break;
       }
       if (ref == 0) continue;
       bool all_out = true;
       for (const auto& corner : tri.corner)
-        if (orient_in_plane(*ends[0], *ends[1], corner, tri.plane->n) * ref > 0) {
+        if (orient_in_plane(*ends[0], *ends[1], corner, *tri.plane) * ref > 0) {
           all_out = false;
           break;
         }
@@ -550,13 +550,15 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     const auto& f = triangles[t];
     shape[t].plane = &tri_plane[t];
     for (int k = 0; k < 3; ++k) {
-      shape[t].corner[k] = to_q(P[f[k]]);
+      shape[t].corner[k] = {to_h(to_q(P[f[k]])), P[f[k]]};
       const Vec3& x = P[f[k]];
       const Vec3& y = P[f[(k + 1) % 3]];
       mpq_class u[3], m[3];
       for (int i = 0; i < 3; ++i) u[i] = mpq_class(y[i]) - x[i];
       cross(u, tri_plane[t].n, m); // (y - x) x n points away from the triangle
       shape[t].edge[k] = make_plane(x, m);
+      shape[t].edge[k].ids[0] = f[k];
+      shape[t].edge[k].ids[1] = f[(k + 1) % 3];
     }
   }
   for (int T = 0; T < ntet; ++T) {
@@ -625,7 +627,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
             for (int k = 0; k < 3 && in_plane; ++k) {
               const int x = triangles[t][k];
               const auto& id = face.plane->ids;
-              in_plane = x == id[0] || x == id[1] || x == id[2] || side_q(*face.plane, shape[t].corner[k]) == 0;
+              in_plane = x == id[0] || x == id[1] || x == id[2] || side_of(*face.plane, shape[t].corner[k]) == 0;
             }
           } else {
             const auto& o = face.origin;
@@ -648,26 +650,16 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
             }
           }
           if (split) break;
-          const auto& loop = cx.faces[f].loop;
-          // centroid inside the closed triangle?
-          QPoint g;
-          for (int i : loop)
-            for (int k = 0; k < 3; ++k) g.c[k] += cx.v.q[i].c[k];
-          for (int k = 0; k < 3; ++k) g.c[k] /= static_cast<long>(loop.size());
+          // The face straddles no edge line of the triangle (the planes of
+          // the neighbours, or the edge planes above, split it), so it lies
+          // in the closed triangle iff all its vertices do.
           bool inside = true;
-          const auto& tri = triangles[t];
-          for (int e = 0; e < 3 && inside; ++e) {
-            const Vec3& x = P[tri[e]];
-            const Vec3& y = P[tri[(e + 1) % 3]];
-            mpq_class d[3], r[3], cr[3];
-            for (int k = 0; k < 3; ++k) {
-              d[k] = mpq_class(y[k]) - x[k];
-              r[k] = g.c[k] - x[k];
-            }
-            cross(d, r, cr);
-            mpq_class dot = cr[0] * pl.n[0] + cr[1] * pl.n[1] + cr[2] * pl.n[2];
-            if (sgn(dot) < 0) inside = false;
-          }
+          for (int e = 0; e < 3 && inside; ++e)
+            for (int i : cx.faces[f].loop)
+              if (cx.side(shape[t].edge[e], i) > 0) {
+                inside = false;
+                break;
+              }
           if (inside) {
             cx.faces[f].tri = t;
             break;

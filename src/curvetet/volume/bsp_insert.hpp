@@ -13,6 +13,7 @@
 // triangle's normal); the cells of the wanted region are tetrahedralized:
 // polygonal faces by a fan from their centroid (shared by both cells), cells
 // by a cone from their centroid (a cell that is a tet stays one tet).
+// Exact predicates run on homogeneous integer points (homogeneous.hpp).
 #include "curvetet/volume/background.hpp"
 #include "curvetet/volume/exact_mesh.hpp"
 
