@@ -1,6 +1,7 @@
 #include "curvetet/volume/exact_mesh.hpp"
 
 #include "curvetet/geometry/predicates.hpp"
+#include "curvetet/volume/homogeneous.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -36,14 +37,18 @@ bool is_double(const QPoint& p) {
 }
 
 int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d) {
-  mpq_class u[3], v[3], w[3];
+  // In integers: b - a = (xb wa - xa wb) / (wa wb) with positive
+  // denominators, so the determinant of the numerators has the same sign
+  // (no gcd per product, unlike mpq arithmetic).
+  const HPoint ha = to_h(a), hb = to_h(b), hc = to_h(c), hd = to_h(d);
+  mpz_class u[3], v[3], w[3];
   for (int i = 0; i < 3; ++i) {
-    u[i] = b.c[i] - a.c[i];
-    v[i] = c.c[i] - a.c[i];
-    w[i] = d.c[i] - a.c[i];
+    u[i] = hb.x[i] * ha.w - ha.x[i] * hb.w;
+    v[i] = hc.x[i] * ha.w - ha.x[i] * hc.w;
+    w[i] = hd.x[i] * ha.w - ha.x[i] * hd.w;
   }
-  mpq_class det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-                  u[2] * (v[0] * w[1] - v[1] * w[0]);
+  const mpz_class det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                        u[2] * (v[0] * w[1] - v[1] * w[0]);
   return sgn(det);
 }
 
