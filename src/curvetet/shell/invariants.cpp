@@ -6,6 +6,7 @@
 #include "curvetet/shell/cap_view.hpp"
 #include "curvetet/shell/exact_dot.hpp"
 #include "curvetet/shell/prism_tets.hpp"
+#include "curvetet/shell/tet_contact.hpp"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -65,24 +66,6 @@ bool point_in_closed_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
          orient3d(a, b, c, p) >= 0;
 }
 
-// Exact: closed triangle (t0,t1,t2) meets closed positive tet (a,b,c,d).
-bool triangle_meets_tet(const Vec3& t0, const Vec3& t1, const Vec3& t2, const Vec3& a, const Vec3& b,
-                        const Vec3& c, const Vec3& d) {
-  const Vec3* tri[3] = {&t0, &t1, &t2};
-  for (auto* p : tri)
-    if (point_in_closed_tet(*p, a, b, c, d)) return true;
-  const Vec3* v[4] = {&a, &b, &c, &d};
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j)
-      if (geometry::segment_triangle_intersect(*v[i], *v[j], t0, t1, t2)) return true;
-  const int faces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-  for (auto& fc : faces)
-    for (int e = 0; e < 3; ++e)
-      if (geometry::segment_triangle_intersect(*tri[e], *tri[(e + 1) % 3], *v[fc[0]], *v[fc[1]], *v[fc[2]]))
-        return true;
-  return false;
-}
-
 // Exact: p in the closed union of the canonical tets of prism f (both slabs).
 bool point_in_prism(const Shell& s, int f, const Vec3& p) {
   const Tri& t = s.faces[f];
@@ -138,7 +121,8 @@ bool prism_section_valid(const Shell& s, int prism, const std::vector<std::vecto
       for (int k = 0; k < 3; ++k) {
         if (zero_pillar(s, slab, f[k])) continue;
         if (normal_dot_sign(a, b, c, slab_lower(s, slab, f[k]), slab_upper(s, slab, f[k])) > 0) continue;
-        // Pillar k points the wrong way: t must not meet any tet holding it.
+        // Pillar k points the wrong way: t must not meet any tet holding it
+        // (except along lateral fibres, see section_allowed_corners).
         for (const auto& tet : all_slab_tets()) {
           if (tet.pillar != k) continue;
           const auto& q = tet.corners;
@@ -146,7 +130,10 @@ bool prism_section_valid(const Shell& s, int prism, const std::vector<std::vecto
                      &p3 = corner(s, slab, f, q[3]);
           // The section is only defined on a positive prism.
           if (orient3d(p0, p1, p2, p3) <= 0) return false;
-          if (triangle_meets_tet(a, b, c, p0, p1, p2, p3)) return false;
+          const Vec3* tri[3] = {&a, &b, &c};
+          const Vec3* v[4] = {&p0, &p1, &p2, &p3};
+          const auto allowed = section_allowed_corners(tet, slab == Slab::bottom);
+          if (triangle_meets_tet_outside(tri, v, allowed.data())) return false;
         }
       }
     for (const Vec3* p : {&a, &b, &c}) {

@@ -3,6 +3,7 @@
 #include "curvetet/geometry/predicates.hpp"
 #include "curvetet/shell/exact_dot.hpp"
 #include "curvetet/shell/prism_tets.hpp"
+#include "curvetet/shell/tet_contact.hpp"
 
 #include <Eigen/Dense>
 
@@ -18,26 +19,6 @@ using geometry::orient3d;
 namespace {
 
 constexpr Slab kSlabs[2] = {Slab::bottom, Slab::top};
-
-bool point_in_closed_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  return orient3d(p, b, c, d) >= 0 && orient3d(a, p, c, d) >= 0 && orient3d(a, b, p, d) >= 0 &&
-         orient3d(a, b, c, p) >= 0;
-}
-
-// Exact: closed triangle meets closed positive tet.
-bool triangle_meets_tet(const Vec3* tri[3], const Vec3* v[4]) {
-  for (int i = 0; i < 3; ++i)
-    if (point_in_closed_tet(*tri[i], *v[0], *v[1], *v[2], *v[3])) return true;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j)
-      if (geometry::segment_triangle_intersect(*v[i], *v[j], *tri[0], *tri[1], *tri[2])) return true;
-  static const int faces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-  for (const auto& fc : faces)
-    for (int e = 0; e < 3; ++e)
-      if (geometry::segment_triangle_intersect(*tri[e], *tri[(e + 1) % 3], *v[fc[0]], *v[fc[1]], *v[fc[2]]))
-        return true;
-  return false;
-}
 
 struct TetFrame {
   Vec3 p[4], r[4];
@@ -110,7 +91,8 @@ bool section_condition(const PrismGeom& g, const Vec3& a, const Vec3& b, const V
         const Vec3* v[4] = {&g.corner(slab, q[0]), &g.corner(slab, q[1]), &g.corner(slab, q[2]),
                             &g.corner(slab, q[3])};
         if (orient3d(*v[0], *v[1], *v[2], *v[3]) <= 0) return false; // defined on positive prisms only
-        if (triangle_meets_tet(tri, v)) return false;
+        const auto allowed = section_allowed_corners(tet, slab == Slab::bottom);
+        if (triangle_meets_tet_outside(tri, v, allowed.data())) return false;
       }
     }
   return true;

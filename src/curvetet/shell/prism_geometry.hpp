@@ -42,7 +42,9 @@ bool triangle_meets_prism(const PrismGeom& g, const Vec3& a, const Vec3& b, cons
 // Exact section condition of input triangle (a, b, c) in this prism (same
 // rule as shell::prism_section_valid without its containment part): for each
 // non-zero pillar whose direction has a non-positive dot product with the
-// triangle's normal, the triangle meets none of the tets holding that pillar.
+// triangle's normal, the triangle meets none of the tets holding that pillar
+// (contact confined to their lateral middle corners or edge excepted:
+// section_allowed_corners).
 bool section_condition(const PrismGeom& g, const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Π restricted to the prism: (u, v) of the fiber through p, and its depth
