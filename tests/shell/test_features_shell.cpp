@@ -460,3 +460,19 @@ TEST(ShellFeatures, CylinderLoopsKeepThreeEdges) {
   expect_features_kept(s, st.epsilon);
   for (int k = 0; k < 2; ++k) EXPECT_GE(s.features.chain_edges[k], 3);
 }
+
+// 90° chains coarsen too: faces across a chain touch the prisms of this side
+// along it, which Section allows (docs/coarsen.md, "Contact along creases").
+// Before that rule no edge of these chains coarsened (4 per chain here).
+TEST(ShellFeatures, CoarseningACubeShortensIts90DegreeChains) {
+  auto f = featured_shell(grid_cube(4), 30);
+  Shell& s = f.shell;
+  CoarsenOptions o;
+  o.debug_invariants = true;
+  const auto st = coarsen_shell(s, o);
+  EXPECT_TRUE(check_shell(s).empty());
+  expect_features_kept(s, st.epsilon);
+  EXPECT_EQ(check_features(s).corners_missing, 0);
+  EXPECT_LT(check_features(s).coarse_edges, 48 / 2);
+  EXPECT_LT(st.faces_after, st.faces_before / 4);
+}
