@@ -52,8 +52,6 @@ void cross(const mpq_class u[3], const mpq_class v[3], mpq_class out[3]) {
   out[2] = u[0] * v[1] - u[1] * v[0];
 }
 
-// A surface triangle as seen by the cut filter: its plane, and the planes
-// through its edges perpendicular to it, normals pointing away from it.
 // A rational point with its double approximation (coordinates within 4u
 // relative of the exact ones) for the floating filters.
 struct Point {
@@ -65,6 +63,8 @@ Point make_point(HPoint h) {
   return {std::move(h), d};
 }
 
+// A surface triangle as seen by the cut filter: its plane, and the planes
+// through its edges perpendicular to it, normals pointing away from it.
 struct TriangleShape {
   const Plane* plane = nullptr;
   Plane edge[3];
@@ -149,7 +149,8 @@ class Complex {
     }
   }
 
-  // v with each vertex's homogeneous form (same order).
+  // v's vertices in homogeneous form, same order (the centres added when
+  // the cells are tetrahedralized at the end are not mirrored).
   std::vector<Point> points;
 
   int add_point(const Vec3& p) {
