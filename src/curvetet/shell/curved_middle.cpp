@@ -1,5 +1,7 @@
 #include "curvetet/shell/curved_middle.hpp"
 
+#include "curvetet/shell/slab_tet_nodes.hpp"
+
 #include "curvetet/core/error.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/element_map.hpp"
@@ -41,6 +43,15 @@ bool slabs_positive(const PrismGeom& g, int k, const std::vector<Vec3>& nodes, c
     if (collapsed[0] && collapsed[1] && collapsed[2]) continue; // a flat slab: no volume to certify
     const auto cert = highorder::certify_slab(k, nodes.data(), cap, side, collapsed, o);
     if (cert.validity != highorder::Validity::positive) return false;
+    if (!(collapsed[0] || collapsed[1] || collapsed[2])) continue;
+    // Beside a pinched pillar the output places some nodes off the slab map
+    // (slab_tet_nodes): certify those tets themselves, at order k + 1.
+    const SlabPatch patch{k, nodes.data(), cap, side == highorder::SlabSide::bottom, collapsed};
+    for (const auto& tet : canonical_split(g.ids)) {
+      if (collapsed[tet.pillar]) continue;
+      const auto tet_nodes = slab_tet_nodes(patch, tet, k + 1);
+      if (highorder::certify_tet(k + 1, tet_nodes.data(), o).validity != highorder::Validity::positive) return false;
+    }
   }
   return true;
 }

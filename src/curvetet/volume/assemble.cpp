@@ -4,6 +4,7 @@
 #include "curvetet/highorder/element_map.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/shell/prism_tets.hpp"
+#include "curvetet/shell/slab_tet_nodes.hpp"
 
 #include <algorithm>
 #include <map>
@@ -16,43 +17,28 @@ namespace {
 // B (w = 0) -> middle (w = 1), top slabs middle (w = 0) -> T (w = 1).
 enum class Cap { bottom, top };
 
-// How to place the order-P nodes of one tet: either barycentric in its four
-// corners (fill), or through the curved slab map of face `face` at the
-// reference corners `ref` (slab tets).
+// How to place the order-P nodes of one tet: barycentric in its four
+// corners (fill, face = -1), or as canonical tet `tet` of the slab of face
+// `face` (shell::slab_tet_nodes, the placement the shell certifies).
 struct TetSource {
-  int face = -1;                             // -1: linear fill tet
+  int face = -1;
   Cap cap = Cap::bottom;
-  std::array<std::array<double, 3>, 4> ref{}; // reference (u, v, w) of each corner
-  std::array<bool, 4> on_middle{};            // corner is on the middle surface
-  std::array<bool, 4> pinched{};              // corner is a singular vertex
+  shell::SlabTet tet{};
 };
 
-mesh::Vec3 slab_point(const CurvedMiddle& s, const TetSource& src, const std::array<double, 3>& uvw) {
-  const auto& f = s.faces[src.face];
-  const auto& cap = src.cap == Cap::bottom ? s.bottom : s.top;
-  const double u = uvw[0], v = uvw[1], w = uvw[2];
-  const mesh::Vec3 flat = (1 - u - v) * cap[f[0]] + u * cap[f[1]] + v * cap[f[2]];
-  const mesh::Vec3 middle =
-      highorder::triangle_point(s.degree, s.middle_nodes[src.face].data(), Eigen::Vector2d(u, v));
-  return src.cap == Cap::bottom ? (1 - w) * flat + w * middle : (1 - w) * middle + w * flat;
+shell::SlabPatch slab_patch(const CurvedMiddle& s, int face, Cap cap) {
+  const auto& f = s.faces[face];
+  const auto& caps = cap == Cap::bottom ? s.bottom : s.top;
+  shell::SlabPatch p;
+  p.degree = s.degree;
+  p.middle_nodes = s.middle_nodes[face].data();
+  p.bottom = cap == Cap::bottom;
+  for (int k = 0; k < 3; ++k) {
+    p.cap[k] = caps[f[k]];
+    p.pinched[k] = s.singular[f[k]];
+  }
+  return p;
 }
-
-// The slab map has a zero w-derivative on a pinched pillar, so a tet placed
-// through it is degenerate (det J = 0) at the pinched corner. Nodes whose
-// carrier (the corners with non-zero weight) holds a pinched corner are
-// therefore placed on the straight simplex instead, unless they lie on the
-// middle surface, which must follow the curved patch. The rule depends only
-// on the node's carrier, so every tet sharing the node agrees on it.
-bool straight_near_pinch(const TetSource& src, const std::array<double, 4>& lambda) {
-  bool pinched = false, on_middle = true;
-  for (int j = 0; j < 4; ++j)
-    if (lambda[j] > 0) {
-      pinched |= src.pinched[j];
-      on_middle &= src.on_middle[j];
-    }
-  return pinched && !on_middle;
-}
-
 
 // The 3 canonical tets of every slab on one side of the middle, appended to
 // `tets` / `sources`. lower[v] / upper[v]: corner ids of shell vertex v's
@@ -71,20 +57,11 @@ void add_slab_tets(const CurvedMiddle& s, Cap cap, const std::vector<int>& lower
         continue;
       }
       std::array<int, 4> ids;
-      TetSource src;
-      src.face = f;
-      src.cap = cap;
       for (int j = 0; j < 4; ++j) {
         const int c = st.corners[j];
-        const bool is_upper = c >= 3;
-        ids[j] = is_upper ? upper[face[c - 3]] : lower[face[c]];
-        src.ref[j] = shell::reference_corner(c);
-        src.pinched[j] = s.singular[face[c % 3]];
-        src.on_middle[j] = is_upper == (cap == Cap::bottom) || src.pinched[j];
-        // A pinched corner is on the middle too: evaluate it there so that
-        // middle-surface nodes through it land on the curved patch.
-        if (src.pinched[j]) src.ref[j][2] = cap == Cap::bottom ? 1.0 : 0.0;
+        ids[j] = c >= 3 ? upper[face[c - 3]] : lower[face[c]];
       }
+      const TetSource src{f, cap, st};
       if (middle_faces)
         for (int lf = 0; lf < 4; ++lf) {
           int on = 0;
@@ -185,22 +162,18 @@ mesh::TetMesh assemble_curved_mesh(const CurvedMiddle& s, const mesh::LinearTetM
   }
   for (std::size_t t = 0; t < tets.size(); ++t) {
     const auto& src = sources[t];
+    // A flat middle needs no slab map: slab_tet_nodes then gives the
+    // straight canonical tets that invariant 1 proves positive.
+    const std::vector<mesh::Vec3> slab =
+        src.face < 0 ? std::vector<mesh::Vec3>{} : shell::slab_tet_nodes(slab_patch(s, src.face, src.cap), src.tet, order);
     for (int i = 0; i < per_tet; ++i) {
       const int g = numbering.tet_nodes[t * per_tet + i];
-      const auto lambda = highorder::tet_node_barycentric(order, i);
       mesh::Vec3 x = mesh::Vec3::Zero();
-      // A flat middle needs no slab map: the straight canonical tets are the
-      // ones invariant 1 proves positive, while the bilinear slab map of a
-      // non-planar quad can fold them.
-      if (src.face < 0 || s.degree == 1) {
-        for (int j = 0; j < 4; ++j) x += lambda[j] * corners[tets[t][j]];
-      } else if (straight_near_pinch(src, lambda)) {
+      if (src.face < 0) {
+        const auto lambda = highorder::tet_node_barycentric(order, i);
         for (int j = 0; j < 4; ++j) x += lambda[j] * corners[tets[t][j]];
       } else {
-        std::array<double, 3> uvw{0, 0, 0};
-        for (int j = 0; j < 4; ++j)
-          for (int d = 0; d < 3; ++d) uvw[d] += lambda[j] * src.ref[j][d];
-        x = slab_point(s, src, uvw);
+        x = slab[i];
       }
       if (!placed[g]) {
         out.nodes[g] = x;

@@ -1,0 +1,35 @@
+#pragma once
+// The order-P nodes of one canonical tet of a curved slab, placed exactly as
+// the assembled output mesh places them (volume/assemble.cpp calls this), so
+// that the shell can certify the very tets the output will hold.
+//
+// Slab map: x(u, v, w) = (1 - w) cap(u, v) + w M(u, v) for a bottom slab
+// (cap = bottom triangle, w = 1 on the middle patch M of degree k), and
+// (1 - w) M(u, v) + w cap(u, v) for a top slab. Next to a singular vertex
+// (pinched pillar) the map has det J = 0, so nodes whose carrier (corners
+// with non-zero weight) holds a pinched corner and that are not on the
+// middle surface are placed on the straight tet instead; the rule depends
+// only on the carrier, so tets sharing a node agree.
+#include "curvetet/mesh/surface_mesh.hpp"
+#include "curvetet/shell/prism_tets.hpp"
+
+#include <array>
+#include <vector>
+
+namespace curvetet::shell {
+
+using mesh::Vec3;
+
+struct SlabPatch {
+  int degree = 1;                     // k of the middle patch
+  const Vec3* middle_nodes = nullptr; // triangle_node_count(k) nodes, corners first
+  std::array<Vec3, 3> cap;            // the linear cap's corners below/above middle corners 0..2
+  bool bottom = true;                 // bottom slab (cap below) or top slab
+  std::array<bool, 3> pinched{};      // corner is a singular vertex (cap == middle corner)
+};
+
+// Nodes of canonical tet `tet` (its pillar must not be pinched) at `order`,
+// in the internal (Gmsh) tet order.
+std::vector<Vec3> slab_tet_nodes(const SlabPatch& patch, const SlabTet& tet, int order);
+
+} // namespace curvetet::shell
