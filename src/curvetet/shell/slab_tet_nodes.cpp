@@ -42,6 +42,9 @@ std::vector<Vec3> slab_tet_nodes(const SlabPatch& patch, const SlabTet& tet, int
         near_pinch |= pinched[j];
         middle &= on_middle[j];
       }
+    // A flat middle needs no slab map: the straight canonical tets are the
+    // ones invariant 1 proves positive, while the bilinear map of a
+    // non-planar lateral quad can fold them.
     if (patch.degree == 1 || (near_pinch && !middle)) {
       Vec3 x = Vec3::Zero();
       for (int j = 0; j < 4; ++j) x += lambda[j] * corner[j];
