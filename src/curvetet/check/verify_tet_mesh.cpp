@@ -31,7 +31,7 @@ void check_positivity(const mesh::TetMesh& m, const TetMeshVerifyOptions& o, Tet
   std::vector<double> upper(n, 0), mean(n, 0);
   tbb::parallel_for(0, n, [&](int t) {
     std::vector<Eigen::Vector3d> nodes(m.tet_nodes());
-    for (int i = 0; i < m.tet_nodes(); ++i) nodes[i] = m.nodes[m.tet(t)[i]];
+    m.tet_positions(t, nodes.data());
     auto c = highorder::certify_tet(m.order, nodes.data(), o.certificate);
     r.validity[t] = c.validity;
     r.min_det_lower[t] = c.min_det_lower;

@@ -45,6 +45,11 @@ struct TetMesh {
   int num_tets() const { return static_cast<int>(tets.size()) / tet_nodes(); }
   int num_boundary() const { return static_cast<int>(boundary.size()) / triangle_nodes(); }
   const int* tet(int t) const { return tets.data() + static_cast<std::size_t>(t) * tet_nodes(); }
+  // Positions of tet t's nodes into out[0, tet_nodes()).
+  void tet_positions(int t, Eigen::Vector3d* out) const {
+    const int* ids = tet(t);
+    for (int i = 0, n = tet_nodes(); i < n; ++i) out[i] = nodes[ids[i]];
+  }
   const int* boundary_triangle(int b) const { return boundary.data() + static_cast<std::size_t>(b) * triangle_nodes(); }
 };
 

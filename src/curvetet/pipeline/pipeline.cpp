@@ -82,7 +82,7 @@ int uncertified_tets(const mesh::TetMesh& m) {
       [&](const tbb::blocked_range<int>& r, int n) {
         std::vector<mesh::Vec3> nodes(m.tet_nodes());
         for (int t = r.begin(); t < r.end(); ++t) {
-          for (int i = 0; i < m.tet_nodes(); ++i) nodes[i] = m.nodes[m.tet(t)[i]];
+          m.tet_positions(t, nodes.data());
           n += highorder::certify_tet(m.order, nodes.data()).validity != highorder::Validity::positive;
         }
         return n;

@@ -6,7 +6,7 @@
 //   surface (volume::fill_layered on the shell's one-sided extrusion) ->
 //   volume::assemble_curved_mesh -> volume::optimize_curved -> check::verify_tet_mesh.
 // With a curved middle the assembled tets are certified before the
-// optimization; if any is not positive (seen next to singular vertices),
+// optimization; if any is not positive (seen on nefertiti, see run_pipeline),
 // everything runs again with a flat middle (report "curved_middle_fallback").
 // Each stage is timed into the report. Stages that later issues add
 // (coarsening, curved fit, curved optimization) slot in between without

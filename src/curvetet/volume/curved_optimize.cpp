@@ -208,7 +208,7 @@ class CurvedOptimizer {
   // Frames of tet t from its nodes, into k[0, q_).
   void frames(int t, Eigen::Matrix3d* k) const {
     Vec3 nodes[165]; // order <= 8
-    for (int i = 0; i < np_; ++i) nodes[i] = m_.nodes[m_.tet(t)[i]];
+    m_.tet_positions(t, nodes);
     table_.frames(nodes, k);
   }
 
@@ -221,7 +221,7 @@ class CurvedOptimizer {
 
   bool certified(int t) const {
     Vec3 nodes[165];
-    for (int i = 0; i < np_; ++i) nodes[i] = m_.nodes[m_.tet(t)[i]];
+    m_.tet_positions(t, nodes);
     return highorder::certify_tet(m_.order, nodes).validity == highorder::Validity::positive;
   }
 
@@ -432,7 +432,7 @@ Summary summarize(const mesh::TetMesh& m) {
   std::vector<highorder::TetQuality> q(n);
   tbb::parallel_for(0, n, [&](int t) {
     std::vector<Vec3> nodes(m.tet_nodes());
-    for (int i = 0; i < m.tet_nodes(); ++i) nodes[i] = m.nodes[m.tet(t)[i]];
+    m.tet_positions(t, nodes.data());
     q[t] = highorder::tet_quality(m.order, nodes.data());
   });
   Summary s;
