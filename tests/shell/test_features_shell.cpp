@@ -420,7 +420,7 @@ TEST(ShellFeatures, SplitOfAFeatureEdgeLandsOnAnInputChainVertex) {
   auto split = split_candidate(editor, prev, next);
   ASSERT_TRUE(split.has_value());
   EXPECT_EQ(split->moved_middle[0], input_point);
-  ASSERT_FALSE(check(s, *split).has_value());
+  { const auto w = check(s, *split); ASSERT_FALSE(w.has_value()) << to_string(*w); }
   editor.commit(*split, 1);
   editor.compact();
   expect_features_kept(s, 1e-12);

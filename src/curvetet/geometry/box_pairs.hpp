@@ -14,6 +14,11 @@ struct Box3 {
   Eigen::Vector3d max;
 };
 
+// Closed boxes: touching counts.
+inline bool boxes_overlap(const Box3& a, const Box3& b) {
+  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
+}
+
 // Box of a set of points, closed.
 Box3 bounding_box(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 

@@ -140,10 +140,8 @@ mesh::BoundaryMap build_boundary_map(const shell::Shell& s, const mesh::TetMesh&
       const int f = placement[b].face;
       double best = -std::numeric_limits<double>::infinity();
       for (int t : s.tracked[f]) {
-        const auto& tri = s.input.faces[t];
-        const auto& A = s.input.vertices[tri[0]];
-        const auto& B = s.input.vertices[tri[1]];
-        const auto& C = s.input.vertices[tri[2]];
+        // Π⁻¹ lands on M̄; the same barycentric point of M is φ⁻¹ (β⁻¹).
+        const auto [A, B, C] = shell::straight_triangle(s, t);
         double depth = 0;
         const auto hit = shell::fiber_hit(geom[f], l[1], l[2], A, B, C, &depth);
         if (hit && depth > best) {

@@ -23,12 +23,6 @@ std::uint64_t cell_key(long long x, long long y, long long z) {
 // scans all caps), so candidate finding never misses a pair.
 constexpr long long kMaxSpan = 16;
 
-bool boxes_overlap(const geometry::Box3& a, const geometry::Box3& b) {
-  for (int i = 0; i < 3; ++i)
-    if (a.max[i] < b.min[i] || b.max[i] < a.min[i]) return false;
-  return true;
-}
-
 } // namespace
 
 CapIndex::CapIndex(const Shell& s, double cell_size) {
@@ -119,7 +113,7 @@ std::vector<std::pair<int, int>> CapIndex::intersections(const Shell& s, std::sp
   // and (inside the grid) only from the first cell the two ranges share.
   auto wanted = [&](int a, int b) {
     return b != a && (a < b || !std::binary_search(mine.begin(), mine.end(), b)) &&
-           boxes_overlap(boxes_[a], boxes_[b]);
+           geometry::boxes_overlap(boxes_[a], boxes_[b]);
   };
   std::vector<std::vector<std::pair<int, int>>> found(mine.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mine.size(), 32), [&](const auto& range) {

@@ -256,7 +256,7 @@ PassStats run_pass(ShellEditor& e, const Operation& op, const StarContext& ctx, 
       st.tried += r.tried;
       for (int k = 0; k < kRejectionCount; ++k) st.rejected[k] += r.rejected[k];
       if (!r.accepted) continue;
-      if (!caps_free_of_batch(ctx, *r.accepted, batch_id)) {
+      if (!caps_free_of_batch(ctx, *r.accepted, batch_id) || e.reshapes_batch_face(*r.accepted, batch_id)) {
         ++st.rejected[static_cast<int>(Rejection::batch_conflict)];
         continue;
       }

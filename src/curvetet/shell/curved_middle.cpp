@@ -1,6 +1,7 @@
 #include "curvetet/shell/curved_middle.hpp"
 
 #include "curvetet/shell/slab_tet_nodes.hpp"
+#include "curvetet/shell/straighten.hpp"
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
@@ -90,16 +91,22 @@ void add_fixed_edges(const Shell& s, const StarCandidate& c, int k, std::vector<
     }
 }
 
+// Centroid and edge midpoints of an input face.
+constexpr double kFaceSampleWeights[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
+
 void add_samples(const Shell& s, const StarCandidate& c, PatchFitProblem& p) {
   for (const auto& im : c.images) p.samples.push_back({im.local, {im.u, im.v}, s.points[im.point].position});
   for (std::size_t k = 0; k < c.faces.size(); ++k)
     for (int t : c.tracked[k]) {
+      // A point of M̄ (where Π acts) paired with the same point of M (β⁻¹).
+      const auto bar = straight_triangle(s, c, t);
       const auto& f = s.input.faces[t];
-      const Vec3 a = s.input.vertices[f[0]], b = s.input.vertices[f[1]], d = s.input.vertices[f[2]];
-      for (const Vec3& x : {Vec3((a + b + d) / 3), Vec3((a + b) / 2), Vec3((b + d) / 2), Vec3((d + a) / 2)}) {
+      const std::array<Vec3, 3> in{s.input.vertices[f[0]], s.input.vertices[f[1]], s.input.vertices[f[2]]};
+      for (const auto& w : kFaceSampleWeights) {
+        const Vec3 x = w[0] * bar[0] + w[1] * bar[1] + w[2] * bar[2];
         double depth;
         const auto uv = project_in(c.geoms[k], x, 1e-9, &depth);
-        if (uv) p.samples.push_back({static_cast<int>(k), {(*uv)[0], (*uv)[1]}, x});
+        if (uv) p.samples.push_back({static_cast<int>(k), {(*uv)[0], (*uv)[1]}, Vec3(w[0] * in[0] + w[1] * in[1] + w[2] * in[2])});
       }
     }
 }

@@ -89,6 +89,7 @@ void attach_features(Shell& s, const features::FeatureGraph& g) {
   ShellFeatures f;
   f.chains = g.chains;
   f.input_corners = g.corners;
+  f.input_faces_around = mesh::build_vertex_faces(s.input.num_vertices(), s.input.faces);
   for (const auto& c : f.chains) {
     std::vector<double> a{0.0};
     const int n = c.num_edges();

@@ -23,6 +23,7 @@
 // the coarse edges of a chain cover it contiguously, end to end; an open
 // chain keeps >= 1 edge, a loop or a chain closed at one corner keeps >= 3.
 #include "curvetet/features/chains.hpp"
+#include "curvetet/mesh/edge_topology.hpp"
 
 #include <cstdint>
 #include <unordered_map>
@@ -42,6 +43,7 @@ struct ShellFeatures {
   std::vector<features::FeatureChain> chains; // input vertex ids
   std::vector<std::vector<double>> arc;       // per chain: arc length at positions 0..num_edges
   std::vector<int> input_corners;             // sorted input vertex ids
+  mesh::VertexFaces input_faces_around;       // input faces around each input vertex (straightening)
   // ---- shell side (per shell vertex; empty when there are no features) ----
   std::vector<int> corner_input;  // input vertex of a corner, -1 otherwise
   std::vector<int> chain;         // chain of an interior chain vertex, -1 otherwise

@@ -115,8 +115,7 @@ std::vector<std::vector<int>> input_trackers(const Shell& s) {
 bool prism_section_valid(const Shell& s, int prism, const std::vector<std::vector<int>>& trackers) {
   const Tri& f = s.faces[prism];
   for (int t : s.tracked[prism]) {
-    const auto& it = s.input.faces[t];
-    const Vec3 &a = s.input.vertices[it[0]], &b = s.input.vertices[it[1]], &c = s.input.vertices[it[2]];
+    const auto [a, b, c] = straight_triangle(s, t);
     for (Slab slab : kSlabs)
       for (int k = 0; k < 3; ++k) {
         if (zero_pillar(s, slab, f[k])) continue;

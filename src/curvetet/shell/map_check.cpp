@@ -23,7 +23,7 @@ MapCheck check_map(const Shell& s) {
       return;
     }
     const PrismGeom g = prism_geom(s, p.image.prism);
-    const auto uv = project_in(g, p.position, 1e-9);
+    const auto uv = project_in(g, straight_vertex(s, i), 1e-9);
     outside[i] = !uv || std::abs((*uv)[0] - p.image.u) > 1e-9 || std::abs((*uv)[1] - p.image.v) > 1e-9;
     const Vec3 x = middle_point(s, p.image);
     dist[i] = (x - p.position).norm();
@@ -37,9 +37,10 @@ MapCheck check_map(const Shell& s) {
   }
   // Bijectivity: the images of the tracked faces tile each middle triangle.
   const int F = s.num_prisms();
+  const mesh::SurfaceMesh bar{s.straight.empty() ? s.input.vertices : s.straight, s.input.faces}; // M̄
   std::vector<double> err(F, 0), piece(F, 0);
   tbb::parallel_for(0, F, [&](int f) {
-    const auto a = image_area_sum(prism_geom(s, f), s.input, s.tracked[f]);
+    const auto a = image_area_sum(prism_geom(s, f), bar, s.tracked[f]);
     err[f] = std::abs(a.area - 1);
     piece[f] = a.min_piece;
   });

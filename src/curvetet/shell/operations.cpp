@@ -103,8 +103,8 @@ std::optional<StarCandidate> split_candidate(const ShellEditor& e, int a, int b)
     uv[corner_of(t, b)] = 0.5;
     const PrismGeom g = e.geom(f);
     for (int it : s.tracked[f]) {
-      const auto& tri = s.input.faces[it];
-      hit = fiber_hit(g, uv[1], uv[2], s.input.vertices[tri[0]], s.input.vertices[tri[1]], s.input.vertices[tri[2]]);
+      const auto tri = straight_triangle(s, it);
+      hit = fiber_hit(g, uv[1], uv[2], tri[0], tri[1], tri[2]);
       if (hit) break;
     }
     if (hit) break;

@@ -43,10 +43,9 @@ std::optional<Vec3> Projector::unproject(const MapPoint& m, int* input_face) con
   double best = -std::numeric_limits<double>::infinity();
   std::optional<Vec3> best_point;
   for (int it : s_.tracked[m.prism]) {
-    const auto& tri = s_.input.faces[it];
+    const auto tri = straight_triangle(s_, it);
     double depth = 0;
-    auto hit = fiber_hit(g, m.u, m.v, s_.input.vertices[tri[0]], s_.input.vertices[tri[1]], s_.input.vertices[tri[2]],
-                         &depth);
+    auto hit = fiber_hit(g, m.u, m.v, tri[0], tri[1], tri[2], &depth);
     if (hit && depth > best) {
       best = depth;
       best_point = hit;
@@ -63,9 +62,10 @@ Vec3 Projector::middle_point(const MapPoint& m) const {
 
 int Projector::remap_points(Shell& s) const {
   int failed = 0;
-  for (auto& p : s.points) {
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    auto& p = s.points[i];
     try {
-      p.image = project(p.position, p.input_face);
+      p.image = project(straight_vertex(s, static_cast<int>(i)), p.input_face);
     } catch (const Error&) {
       ++failed;
     }

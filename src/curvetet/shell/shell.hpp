@@ -12,6 +12,12 @@
 // tracked[f] lists the input faces (ids into `input.faces`) whose part inside
 // prism f is parametrised by it. Initially (middle = input) prism f tracks its
 // own input face; after isolation splits a face, both halves track it.
+//
+// Feature straightening (paper §5.1): Π acts on M̄, a copy of the input with
+// the same faces whose feature chain vertices are moved onto the straight
+// coarse middle edges, so Π maps each chain onto its edge; φ = ψ∘Π∘β with β:
+// M -> M̄ affine per face. Distances are always measured from M. `straight`
+// holds M̄'s vertices; empty means M̄ = M (no feature was straightened).
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/shell/features.hpp"
 
@@ -31,8 +37,8 @@ struct MapPoint {
   double u = 0, v = 0;
 };
 
-// A point of the input surface followed through every shell edit:
-// position on input face `input_face` and its image Π(position).
+// An input vertex followed through every shell edit: its position on M,
+// an input face holding it, and its image Π(β(position)).
 struct TrackedPoint {
   Vec3 position;
   int input_face = -1;
@@ -45,9 +51,8 @@ struct Shell {
   std::vector<std::vector<int>> tracked; // per prism: input face ids, sorted
   std::vector<char> singular;            // per shell vertex: pinched pillar
   mesh::SurfaceMesh input;               // the input surface M
-  // Input vertices first (points[i] is input vertex i), then any other
-  // constraint points.
-  std::vector<TrackedPoint> points;
+  std::vector<Vec3> straight;            // M̄'s vertices (empty: M̄ = M)
+  std::vector<TrackedPoint> points;      // points[i] is input vertex i
   // The curved middle surface (paper §4.1): per prism, the Lagrange nodes of
   // a degree-`middle_degree` triangle in internal (Gmsh) order, corners
   // first and bitwise equal to middle[faces[f][k]]; edge nodes agree between
@@ -60,6 +65,15 @@ struct Shell {
   int num_vertices() const { return static_cast<int>(middle.size()); }
   int num_prisms() const { return static_cast<int>(faces.size()); }
 };
+
+// Vertex i and face t of M̄ (the surface Π acts on).
+inline const Vec3& straight_vertex(const Shell& s, int i) {
+  return s.straight.empty() ? s.input.vertices[i] : s.straight[i];
+}
+inline std::array<Vec3, 3> straight_triangle(const Shell& s, int t) {
+  const Tri& f = s.input.faces[t];
+  return {straight_vertex(s, f[0]), straight_vertex(s, f[1]), straight_vertex(s, f[2])};
+}
 
 // The point of the (curved or flat) middle surface at p.
 Vec3 middle_point(const Shell& s, const MapPoint& p);

@@ -2,6 +2,7 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/shell/feature_tracking.hpp"
+#include "curvetet/shell/straighten.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -89,6 +90,9 @@ std::vector<int> ShellEditor::commit(const StarCandidate& c, int batch) {
   // Features first: the plan compares moved positions with the current ones.
   // A new vertex (if any) gets id num_vertices().
   apply_feature_edit(s_, c, s_.num_vertices());
+  apply_straightening(s_, c);
+  if (!c.reshaped.empty() && reshaped_batch_.empty()) reshaped_batch_.assign(s_.input.num_faces(), -1);
+  for (int t : c.reshaped) reshaped_batch_[t] = batch;
   // 1. Retire the removed prisms.
   for (int f : c.removed) {
     for (int side = 0; side < 2; ++side) grid_.erase(2 * f + side, cap_box(2 * f + side));
@@ -174,6 +178,11 @@ std::vector<int> ShellEditor::commit(const StarCandidate& c, int batch) {
   return ids;
 }
 
+bool ShellEditor::reshapes_batch_face(const StarCandidate& c, int batch) const {
+  if (reshaped_batch_.empty()) return false;
+  return std::any_of(c.reshaped.begin(), c.reshaped.end(), [&](int t) { return reshaped_batch_[t] == batch; });
+}
+
 void ShellEditor::compact() {
   const int F = s_.num_prisms(), n = s_.num_vertices();
   std::vector<int> fmap(F, -1), vmap(n, -1);
@@ -210,6 +219,7 @@ void ShellEditor::compact() {
   for (auto& p : s.points)
     if (p.image.prism >= 0) p.image.prism = fmap[p.image.prism];
   remap_feature_vertices(s.features, vmap, nv);
+  reshaped_batch_.clear(); // batch ids restart with the next pass
   rebuild();
 }
 

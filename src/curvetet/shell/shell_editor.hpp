@@ -29,6 +29,9 @@ class ShellEditor {
   int batch_of(int f) const { return face_batch_[f]; } // -1: not created by a commit
   int alive_faces() const { return alive_faces_; }
   const CapGrid& grid() const { return grid_; }
+  // true when an earlier commit of batch `batch` reshaped (straighten.hpp)
+  // one of the input faces c reshapes: c was checked against the old face.
+  bool reshapes_batch_face(const StarCandidate& c, int batch) const;
 
   PrismGeom geom(int f) const { return prism_geom(s_, f); }
   // Positions of vertex v as the candidate has them.
@@ -53,6 +56,7 @@ class ShellEditor {
   std::vector<char> face_alive_, vertex_alive_;
   std::vector<std::uint32_t> version_;
   std::vector<int> face_batch_;
+  std::vector<int> reshaped_batch_; // per input face: batch of the last commit reshaping it (empty until one does)
   int alive_faces_ = 0;
   CapGrid grid_;
 };

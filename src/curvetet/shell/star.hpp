@@ -40,7 +40,8 @@ enum class Rejection : std::uint8_t {
   curved_fit,        // the middle-surface fit of the new triangles failed
   distance,          // a constraint point would map farther than epsilon
   feature,           // breaks a feature rule (feature_invariant.hpp)
-  batch_conflict,    // new caps cross caps committed earlier in the same batch
+  batch_conflict,    // new caps cross caps committed earlier in the same batch,
+                     // or an input face it reshapes was reshaped earlier in it
   count_
 };
 inline constexpr int kRejectionCount = static_cast<int>(Rejection::count_);
@@ -58,6 +59,19 @@ struct StarCandidate {
   std::array<int, 2> edge{-1, -1}; // collapse: (from, to); flip, split: the edge (a, b)
   // ---- derived (filled by the invariant list) ----
   std::vector<PrismGeom> geoms;             // per new face
+  // Feature straightening (straighten.hpp): input vertices whose M̄ position
+  // changes, sorted by vertex; on the coarse feature edge (a, b) at
+  // parameter t from a, or a = -1: back to their input position (they
+  // became an end of a coarse edge). `reshaped`: the input faces around them.
+  struct Straightened {
+    int vertex;
+    Vec3 at;
+    int a = -1, b = -1;
+    double t = 0;
+  };
+  std::vector<Straightened> straightened;
+  std::vector<int> reshaped;                // sorted
+  std::vector<std::array<int, 2>> ring_tracked; // (prism outside the star, reshaped face) now meeting it
   std::vector<int> old_tracked;             // union of the removed prisms' tracked faces
   std::vector<std::vector<int>> tracked;    // per new face, sorted
   struct Image {

@@ -1,6 +1,7 @@
 #include "curvetet/shell/star_invariants.hpp"
 
 #include "curvetet/shell/feature_invariant.hpp"
+#include "curvetet/shell/straighten.hpp"
 
 #include "curvetet/geometry/triangle_pair.hpp"
 
@@ -72,10 +73,6 @@ double mips(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 namespace {
 
-bool boxes_overlap(const geometry::Box3& a, const geometry::Box3& b) {
-  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
-}
-
 geometry::Box3 box_of(const std::array<Vec3, 3>& p) { return geometry::bounding_box(p[0], p[1], p[2]); }
 
 geometry::Box3 prism_box(const PrismGeom& g) {
@@ -144,11 +141,6 @@ bool input_crosses_cap(const std::array<Vec3, 3>& t, const CapTri& cap) {
         ++shared.count;
       }
   return geometry::triangles_intersect_improperly(t, cap.p, shared);
-}
-
-std::array<Vec3, 3> input_tri(const Shell& s, int f) {
-  const auto& t = s.input.faces[f];
-  return {s.input.vertices[t[0]], s.input.vertices[t[1]], s.input.vertices[t[2]]};
 }
 
 // ---------------------------------------------------------------------------
@@ -224,6 +216,8 @@ class Coverage final : public StarInvariant {
     const Shell& s = ctx.editor.shell();
     c.old_tracked.clear();
     for (int f : c.removed) c.old_tracked.insert(c.old_tracked.end(), s.tracked[f].begin(), s.tracked[f].end());
+    // Reshaped faces (straightening) may now reach new prisms.
+    c.old_tracked.insert(c.old_tracked.end(), c.reshaped.begin(), c.reshaped.end());
     std::sort(c.old_tracked.begin(), c.old_tracked.end());
     c.old_tracked.erase(std::unique(c.old_tracked.begin(), c.old_tracked.end()), c.old_tracked.end());
     const int K = static_cast<int>(c.faces.size());
@@ -236,11 +230,11 @@ class Coverage final : public StarInvariant {
     }
     c.tracked.assign(K, {});
     for (int t : c.old_tracked) {
-      const auto tri = input_tri(s, t);
+      const auto tri = straight_triangle(s, c, t);
       const auto tb = box_of(tri);
       bool landed = false;
       for (int k = 0; k < K; ++k) {
-        if (!boxes_overlap(tb, boxes[k])) continue;
+        if (!geometry::boxes_overlap(tb, boxes[k])) continue;
         if (triangle_meets_prism(c.geoms[k], tri[0], tri[1], tri[2])) {
           c.tracked[k].push_back(t);
           landed = true;
@@ -248,7 +242,7 @@ class Coverage final : public StarInvariant {
       }
       if (!landed) return false;
       for (const auto& cap : caps)
-        if (boxes_overlap(tb, box_of(cap.p)) && input_crosses_cap(tri, cap)) return false;
+        if (geometry::boxes_overlap(tb, box_of(cap.p)) && input_crosses_cap(tri, cap)) return false;
     }
     return true;
   }
@@ -261,7 +255,7 @@ class Section final : public StarInvariant {
     const Shell& s = ctx.editor.shell();
     for (std::size_t k = 0; k < c.faces.size(); ++k)
       for (int t : c.tracked[k]) {
-        const auto tri = input_tri(s, t);
+        const auto tri = straight_triangle(s, c, t);
         if (!section_condition(c.geoms[k], tri[0], tri[1], tri[2])) return false;
       }
     return true;
@@ -281,13 +275,13 @@ class CapsIntersection final : public StarInvariant {
     }
     for (std::size_t i = 0; i < caps.size(); ++i)
       for (std::size_t j = i + 1; j < caps.size(); ++j)
-        if (boxes_overlap(box_of(caps[i].p), box_of(caps[j].p)) && caps_intersect(caps[i], caps[j])) return false;
+        if (geometry::boxes_overlap(box_of(caps[i].p), box_of(caps[j].p)) && caps_intersect(caps[i], caps[j])) return false;
     for (const auto& cap : caps) {
       const auto box = box_of(cap.p);
       for (int other : ctx.editor.grid().query(box)) {
         const int f = other / 2;
         if (!ctx.editor.face_alive(f) || std::binary_search(c.removed.begin(), c.removed.end(), f)) continue;
-        if (!boxes_overlap(box, ctx.editor.cap_box(other))) continue;
+        if (!geometry::boxes_overlap(box, ctx.editor.cap_box(other))) continue;
         if (caps_intersect(cap, shell_cap(s, other))) return false;
       }
     }
@@ -318,7 +312,7 @@ class MapImages final : public StarInvariant {
         for (std::size_t k = 0; k < c.faces.size(); ++k) {
           if (!std::binary_search(c.tracked[k].begin(), c.tracked[k].end(), pt.input_face)) continue;
           double depth;
-          const auto uv = project_in(c.geoms[k], pt.position, std::numeric_limits<double>::infinity(), &depth);
+          const auto uv = project_in(c.geoms[k], straight_vertex(s, c, p), std::numeric_limits<double>::infinity(), &depth);
           if (uv && depth > best_depth) {
             best_depth = depth;
             best_k = static_cast<int>(k);
@@ -329,7 +323,7 @@ class MapImages final : public StarInvariant {
         if (best_k < 0 || best_depth < -1e-9) return false;
         c.images.push_back({p, best_k, best_uv[0], best_uv[1]});
       }
-    return true;
+    return snap_straightened_images(s, c);
   }
 };
 
@@ -357,6 +351,7 @@ InvariantList default_star_invariants() {
   l.push_back(std::make_unique<MiddleQuality>());
   l.push_back(std::make_unique<SlabQuality>());
   l.push_back(std::make_unique<PrismPositivity>());
+  l.push_back(make_straightening_invariant());
   l.push_back(std::make_unique<Coverage>());
   l.push_back(std::make_unique<Section>());
   l.push_back(std::make_unique<CapsIntersection>());
@@ -384,7 +379,7 @@ bool caps_free_of_batch(const StarContext& ctx, const StarCandidate& c, int batc
       for (int other : ctx.editor.grid().query(box)) {
         const int f = other / 2;
         if (!ctx.editor.face_alive(f) || ctx.editor.batch_of(f) != batch) continue;
-        if (!boxes_overlap(box, ctx.editor.cap_box(other))) continue;
+        if (!geometry::boxes_overlap(box, ctx.editor.cap_box(other))) continue;
         if (caps_intersect(cap, shell_cap(s, other))) return false;
       }
     }

@@ -11,20 +11,25 @@
 //                     lower slabs (middle over bottom: the output's slab
 //                     tets come from them) <= max(old max, bound)
 //  PrismPositivity    invariant 1 on the new prisms (fills c.geoms)
-//  Coverage           every input face tracked by a removed prism meets some
-//                     new prism (fills c.tracked: the faces meeting it) and
-//                     crosses no new cap (contact only at a pinched vertex).
+//  Straightening      feature chains straightened onto the new coarse edges
+//                     keep M̄ a section around the star (straighten.hpp;
+//                     fills c.straightened, c.reshaped)
+//  Coverage           every input face (of M̄) tracked by a removed prism, or
+//                     reshaped, meets some new prism (fills c.tracked: the
+//                     faces meeting it) and crosses no new cap (contact only
+//                     at a pinched vertex).
 //                     Since the star's outer quads are unchanged, this is
 //                     "the tracked faces lie in the union of the new prisms"
 //  Section            invariant 2 for each new prism and its tracked faces
 //  CapsIntersection   invariant 3: new caps against each other and against
 //                     every live cap outside the star (grid candidates)
-//  MapImages          every constraint point mapped into a removed prism gets
-//                     its new Π in a new prism tracking its face (else:
-//                     coverage; fills c.images)
+//  MapImages          every input vertex mapped into a removed prism gets
+//                     its new Π (of its M̄ position) in a new prism tracking
+//                     its face (else: coverage; fills c.images); straightened
+//                     chain vertices land exactly on their edge
 //  CurvedFit          MiddleFit::fit_and_check (no-op for a linear middle;
 //                     the curved fit uses c.images as samples)
-//  Distance           ||p - middle(Π(p))|| < epsilon for those points, the
+//  Distance           ||p - middle(Π(β(p)))|| < epsilon for those points, the
 //                     middle evaluated through MiddleFit::evaluate
 //  Features           feature chains and corners (feature_invariant.hpp)
 #include "curvetet/shell/middle_fit.hpp"
