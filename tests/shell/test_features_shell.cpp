@@ -476,3 +476,51 @@ TEST(ShellFeatures, CoarseningACubeShortensIts90DegreeChains) {
   EXPECT_LT(check_features(s).coarse_edges, 48 / 2);
   EXPECT_LT(st.faces_after, st.faces_before / 4);
 }
+
+// Feature straightening (paper §5.1): after coarsening a cylinder, its curved
+// rim loops are covered by few straight coarse edges, and every input rim
+// vertex inside an edge's range sits on M̄ at the arc-length point of the
+// straight edge and maps exactly onto it. The global invariants (section of
+// M̄, coverage) and the map check hold after every pass.
+TEST(ShellFeatures, CurvedLoopsAreStraightenedOntoTheirCoarseEdges) {
+  auto f = featured_shell(cylinder(24, 4), 60);
+  Shell& s = f.shell;
+  CoarsenOptions o;
+  o.epsilon = 0.05;
+  o.debug_invariants = true;
+  const auto st = coarsen_shell(s, o);
+  EXPECT_TRUE(check_shell(s).empty());
+  expect_features_kept(s, st.epsilon);
+  const auto mc = check_map(s);
+  EXPECT_EQ(mc.points_outside, 0);
+  EXPECT_LT(mc.max_area_error, 1e-9);
+  EXPECT_GE(mc.min_piece_area, -1e-12);
+  EXPECT_LT(mc.max_distance, st.epsilon); // measured from M, not from M̄
+  ASSERT_FALSE(s.straight.empty());
+  int inside = 0;
+  double moved = 0;
+  const auto& F = s.features;
+  for (const auto& [key, e] : F.edges) {
+    const int a = e.first, b = static_cast<int>(key >> 32) == a ? static_cast<int>(key & 0xffffffffu) : static_cast<int>(key >> 32);
+    const double s0 = F.arc_at(e.chain, e.start), span = F.arc_at(e.chain, e.start + e.length) - s0;
+    for (auto q = static_cast<long long>(std::floor(e.start)) + 1; q < e.start + e.length; ++q) {
+      const int iv = F.input_vertex(e.chain, q);
+      const double t = (F.arc_at(e.chain, double(q)) - s0) / span;
+      const Vec3 on_edge = (1 - t) * s.middle[a] + t * s.middle[b];
+      EXPECT_LT((s.straight[iv] - on_edge).norm(), 1e-12);
+      moved = std::max(moved, (s.straight[iv] - s.input.vertices[iv]).norm());
+      const auto& im = s.points[iv].image;
+      const Tri& tri = s.faces[im.prism];
+      const double w[3] = {1 - im.u - im.v, im.u, im.v};
+      const int ia = static_cast<int>(std::find(tri.begin(), tri.end(), a) - tri.begin());
+      const int ib = static_cast<int>(std::find(tri.begin(), tri.end(), b) - tri.begin());
+      ASSERT_LT(ia, 3);
+      ASSERT_LT(ib, 3);
+      EXPECT_EQ(w[3 - ia - ib], 0.0) << "input vertex " << iv << " maps off its coarse edge";
+      EXPECT_NEAR(w[ib], t, 1e-15);
+      ++inside;
+    }
+  }
+  EXPECT_GE(inside, 12); // the rims coarsened: many rim vertices are inside coarse edges
+  EXPECT_GT(moved, 1e-3); // and really moved onto the chords
+}

@@ -320,6 +320,8 @@ void remap_feature_vertices(ShellFeatures& f, const std::vector<int>& vmap, int 
     edges[ShellFeatures::edge_key(vmap[a], vmap[b])] = r;
   }
   f.edges = std::move(edges);
+  for (auto& e : f.on_edge)
+    if (e.a >= 0) e = {vmap[e.a], vmap[e.b], e.t};
 }
 
 // ---- proposals ----------------------------------------------------------------

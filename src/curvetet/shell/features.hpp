@@ -38,6 +38,13 @@ struct CoarseFeatureEdge {
   double length = 0;  // in positions (number of input edges covered)
 };
 
+// Where straightening (straighten.hpp) put an input chain vertex: on coarse
+// feature edge (a, b) at parameter t from a; a = -1: not on an edge's inside.
+struct StraightOnEdge {
+  int a = -1, b = -1;
+  double t = 0;
+};
+
 struct ShellFeatures {
   // ---- input side (fixed) ----
   std::vector<features::FeatureChain> chains; // input vertex ids
@@ -51,6 +58,7 @@ struct ShellFeatures {
   std::vector<int> prev, next;    // its chain neighbours (lower / higher position)
   std::unordered_map<std::uint64_t, CoarseFeatureEdge> edges; // key: edge_key(a, b)
   std::vector<int> chain_edges;   // current number of coarse edges per chain
+  std::vector<StraightOnEdge> on_edge; // per input vertex (empty until a chain is straightened)
 
   bool empty() const { return chains.empty() && corner_input.empty(); }
   bool is_corner(int v) const { return v >= 0 && v < static_cast<int>(corner_input.size()) && corner_input[v] >= 0; }

@@ -90,7 +90,7 @@ std::vector<int> ShellEditor::commit(const StarCandidate& c, int batch) {
   // Features first: the plan compares moved positions with the current ones.
   // A new vertex (if any) gets id num_vertices().
   apply_feature_edit(s_, c, s_.num_vertices());
-  apply_straightening(s_, c);
+  apply_straightening(s_, c, s_.num_vertices());
   if (!c.reshaped.empty() && reshaped_batch_.empty()) reshaped_batch_.assign(s_.input.num_faces(), -1);
   for (int t : c.reshaped) reshaped_batch_[t] = batch;
   // 1. Retire the removed prisms.

@@ -204,19 +204,26 @@ std::array<Vec3, 3> straight_triangle(const Shell& s, const StarCandidate& c, in
 std::unique_ptr<StarInvariant> make_straightening_invariant() { return std::make_unique<Straightening>(); }
 
 bool snap_straightened_images(const Shell& s, StarCandidate& c) {
-  if (c.straightened.empty()) return true;
+  const auto& on_edge = s.features.on_edge;
+  if (c.straightened.empty() && on_edge.empty()) return true;
   for (auto& im : c.images) {
-    const auto* x = find_straightened(c, im.point);
-    if (!x || x->a < 0) continue;
+    // Straightened by c, or earlier (then its edge is still one of c's faces:
+    // only feature operations, which straighten again, remove it).
+    StraightOnEdge e;
+    if (const auto* x = find_straightened(c, im.point)) e = {x->a, x->b, x->t};
+    else if (im.point < static_cast<int>(on_edge.size())) e = on_edge[im.point];
+    if (e.a < 0) continue;
     const int face = s.points[im.point].input_face;
     bool placed = false;
     for (std::size_t k = 0; k < c.faces.size() && !placed; ++k) {
       const Tri& f = c.faces[k];
-      const auto ia = std::find(f.begin(), f.end(), x->a) - f.begin(), ib = std::find(f.begin(), f.end(), x->b) - f.begin();
+      const auto ia = std::find(f.begin(), f.end(), e.a) - f.begin(), ib = std::find(f.begin(), f.end(), e.b) - f.begin();
       if (ia == 3 || ib == 3 || !std::binary_search(c.tracked[k].begin(), c.tracked[k].end(), face)) continue;
       double w[3] = {0, 0, 0};
-      w[ia] = 1 - x->t;
-      w[ib] = x->t;
+      w[ia] = 1 - e.t;
+      w[ib] = e.t;
+      // On edge (1, 2) the third weight is 1 - u - v: make it exactly 0.
+      if (ia != 0 && ib != 0) w[2] = 1 - w[1];
       im = {im.point, static_cast<int>(k), w[1], w[2]};
       placed = true;
     }
@@ -225,10 +232,16 @@ bool snap_straightened_images(const Shell& s, StarCandidate& c) {
   return true;
 }
 
-void apply_straightening(Shell& s, const StarCandidate& c) {
+void apply_straightening(Shell& s, const StarCandidate& c, int new_vertex) {
   if (c.straightened.empty()) return;
   if (s.straight.empty()) s.straight = s.input.vertices;
-  for (const auto& x : c.straightened) s.straight[x.vertex] = x.at;
+  auto& on_edge = s.features.on_edge;
+  if (on_edge.empty()) on_edge.resize(s.input.vertices.size());
+  auto id = [&](int v) { return v == kNewVertex ? new_vertex : v; };
+  for (const auto& x : c.straightened) {
+    s.straight[x.vertex] = x.at;
+    on_edge[x.vertex] = x.a < 0 ? StraightOnEdge{} : StraightOnEdge{id(x.a), id(x.b), x.t};
+  }
   for (const auto& [q, t] : c.ring_tracked) {
     auto& tracked = s.tracked[q];
     tracked.insert(std::lower_bound(tracked.begin(), tracked.end(), t), t);

@@ -44,12 +44,14 @@ std::array<Vec3, 3> straight_triangle(const Shell& s, const StarCandidate& c, in
 // Coverage, which then tracks the reshaped faces where they now lie.
 std::unique_ptr<StarInvariant> make_straightening_invariant();
 
-// Puts the images of c's straightened chain vertices exactly on their edge,
-// in a new prism on that edge tracking the point's face. false: none does.
+// Puts the images of straightened chain vertices (by c or earlier:
+// ShellFeatures::on_edge) exactly on their edge, in a new prism on that edge
+// tracking the point's face. false: none does.
 bool snap_straightened_images(const Shell& s, StarCandidate& c);
 
-// Commit: writes c's new M̄ positions into s.straight and the ring's new
-// tracked faces.
-void apply_straightening(Shell& s, const StarCandidate& c);
+// Commit: writes c's new M̄ positions into s.straight (and where they lie
+// into s.features.on_edge, kNewVertex read as `new_vertex`) and the ring's
+// new tracked faces.
+void apply_straightening(Shell& s, const StarCandidate& c, int new_vertex);
 
 } // namespace curvetet::shell
