@@ -322,6 +322,7 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   const FlipOp flip;
   const SmoothOp smooth(SmoothParams{o.target_pillar * diag, o.singular_dot});
   const RefitOp refit;
+  if (o.debug_invariants) debug_check(s, out.epsilon, "coarsen start");
   for (int round = 0; round < o.max_rounds; ++round) {
     out.rounds = round + 1;
     std::vector<const Operation*> ops = {&collapse, &flip, &smooth};

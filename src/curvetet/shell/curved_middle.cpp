@@ -42,12 +42,19 @@ bool slabs_positive(const PrismGeom& g, int k, const std::vector<Vec3>& nodes, c
     std::array<bool, 3> collapsed{};
     for (int i = 0; i < 3; ++i) collapsed[i] = cap[i] == g.middle[i];
     if (collapsed[0] && collapsed[1] && collapsed[2]) continue; // a flat slab: no volume to certify
-    const auto cert = highorder::certify_slab(k, nodes.data(), cap, side, collapsed, o);
-    if (cert.validity != highorder::Validity::positive) return false;
-    if (!(collapsed[0] || collapsed[1] || collapsed[2])) continue;
-    // Beside a pinched pillar the output places some nodes off the slab map
-    // (slab_tet_nodes): certify those tets themselves, at order k + 1.
     const SlabPatch patch{k, nodes.data(), cap, side == highorder::SlabSide::bottom, collapsed};
+    const StraightParts straight = straight_parts(patch);
+    const bool pinched = collapsed[0] || collapsed[1] || collapsed[2];
+    const bool any_straight = straight.edge[0] || straight.edge[1] || straight.edge[2];
+    // The output tets are pieces of the slab map: certify the map (one
+    // certificate, also what makes the curved middle a proper patch).
+    if (!straight.whole) {
+      const auto cert = highorder::certify_slab(k, nodes.data(), cap, side, collapsed, o);
+      if (cert.validity != highorder::Validity::positive) return false;
+      if (!pinched && !any_straight) continue;
+    }
+    // Some nodes are placed off the slab map (slab_tet_nodes): certify the
+    // tets themselves, at order k + 1.
     for (const auto& tet : canonical_split(g.ids)) {
       if (collapsed[tet.pillar]) continue;
       const auto tet_nodes = slab_tet_nodes(patch, tet, k + 1);

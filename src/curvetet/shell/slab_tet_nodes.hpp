@@ -5,11 +5,14 @@
 //
 // Slab map: x(u, v, w) = (1 - w) cap(u, v) + w M(u, v) for a bottom slab
 // (cap = bottom triangle, w = 1 on the middle patch M of degree k), and
-// (1 - w) M(u, v) + w cap(u, v) for a top slab. Next to a singular vertex
-// (pinched pillar) the map has det J = 0, so nodes whose carrier (corners
-// with non-zero weight) holds a pinched corner and that are not on the
-// middle surface are placed on the straight tet instead; the rule depends
-// only on the carrier, so tets sharing a node agree.
+// (1 - w) M(u, v) + w cap(u, v) for a top slab. Nodes off the middle
+// surface are placed on the straight tet instead where the slab map is
+// degenerate or may fold although the straight prism is positive: next to
+// a singular vertex (pinched pillar: det J = 0) and over straight parts of
+// the middle (a flat patch, or the lateral quad over a straight middle
+// edge: a bilinear quad). Each rule depends only on the node's carrier
+// (corners with non-zero weight) and on data both prisms of an edge share,
+// so tets sharing a node agree. Nodes on the middle are always on M.
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/shell/prism_tets.hpp"
 
@@ -27,6 +30,15 @@ struct SlabPatch {
   bool bottom = true;                 // bottom slab (cap below) or top slab
   std::array<bool, 3> pinched{};      // corner is a singular vertex (cap == middle corner)
 };
+
+// Which parts of the middle patch are flat (every node within 1e-12 of the
+// flat triangle, relative): edge[k] = the edge opposite corner k; whole =
+// all edges and the interior.
+struct StraightParts {
+  std::array<bool, 3> edge{};
+  bool whole = false;
+};
+StraightParts straight_parts(const SlabPatch& patch);
 
 // Nodes of canonical tet `tet` (its pillar must not be pinched) at `order`,
 // in the internal (Gmsh) tet order.
