@@ -7,7 +7,8 @@
 # time spent in the least-squares fit and in slab certificates, max distance
 # / epsilon on the curved surface, exit codes. DEBUG=1 runs the curved shell
 # with --debug-invariants (global invariants + certified slabs + map after
-# every pass; slower, pass times exclude the checks). THREADS=n.
+# every pass; slower, pass times exclude the checks). THREADS=n. MODELS="a b"
+# restricts the run to those models (file names without .off).
 # Usage: bench/curved_shell_sweep.sh [build dir]
 set -u
 build=${1:-build}
@@ -20,6 +21,9 @@ echo '|---|---|---|---|---|---|---|---|---|---|'
 for mesh in "$data"/*.off; do
   name=$(basename "$mesh" .off)
   [ -e "$data/$name.features.json" ] && continue
+  if [ -n "${MODELS:-}" ]; then
+    case " $MODELS " in *" $name "*) ;; *) continue ;; esac
+  fi
   "$build"/app/curvetet -q --threads "${THREADS:-0}" shell "$mesh" -o "$out/$name.flat" --order 2
   cf=$?
   "$build"/app/curvetet -q --threads "${THREADS:-0}" shell "$mesh" -o "$out/$name.curved" --order 4 $extra
