@@ -226,13 +226,12 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
   const auto start = std::chrono::steady_clock::now();
   auto r = run_stages(input, o, report, features, &uncertified);
   if (uncertified == 0) return r;
-  // The shell certifies every curved slab it accepts and, beside a pinched
-  // pillar, the very tets the assembly makes (shell/slab_tet_nodes). Yet on
-  // nefertiti the final shell still holds a prism whose curved slab is not
-  // certified (first_uncertified_prism; 11 of 12331 assembled tets invert):
-  // a shell bug still open in issue 7. Until it is found, this safety net
-  // keeps the output valid: a flat middle's tets are straight, positive by
-  // the prism invariant.
+  // The shell certifies the very tets the assembly makes wherever they leave
+  // the slab map (shell/slab_tet_nodes), from its first layer on (checked by
+  // --debug-invariants, nefertiti included), so this is not expected to
+  // run; it keeps the output valid should an assembled tet still not be
+  // certified: a flat middle's tets are straight, positive by the prism
+  // invariant.
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   logger().warn("{} assembled tets are not certified positive with the curved middle; running again with a flat "
                 "middle",
