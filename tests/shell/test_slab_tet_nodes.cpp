@@ -96,3 +96,72 @@ TEST(SlabTetNodes, StraightBesideAPinchedPillarExceptOnTheMiddle) {
   EXPECT_GT(straight, 0);
   EXPECT_GT(on_patch, 0);
 }
+
+namespace {
+
+// The straight tet's point at node i of `tet` (corners: middle corners on
+// the upper side of a bottom slab, cap corners below).
+Vec3 linear_node(const Slab& s, const SlabTet& tet, int order, int i, bool* on_middle, std::array<bool, 3>* pillars) {
+  const auto l = highorder::tet_node_barycentric(order, i);
+  Vec3 x = Vec3::Zero();
+  *on_middle = true;
+  *pillars = {false, false, false};
+  for (int j = 0; j < 4; ++j) {
+    const int c = tet.corners[j];
+    x += l[j] * (c >= 3 ? s.middle[c % 3] : s.patch.cap[c % 3]);
+    if (l[j] > 0) *on_middle &= c >= 3, (*pillars)[c % 3] = true;
+  }
+  return x;
+}
+
+} // namespace
+
+// A flat patch over a twisted prism (non-planar lateral quads): every node is
+// on the straight tets, the ones invariant 1 proves positive, not on the
+// bilinear slab map.
+TEST(SlabTetNodes, FlatPatchGivesTheStraightTets) {
+  Slab s(0.0, {false, false, false});
+  s.patch.cap[1] += Vec3(0.3, 0.4, 0.2); // twists the quads over edges (0, 1) and (1, 2)
+  const int order = 3;
+  EXPECT_TRUE(straight_parts(s.patch).whole);
+  for (const auto& tet : canonical_split({0, 1, 2})) {
+    const auto nodes = slab_tet_nodes(s.patch, tet, order);
+    for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
+      bool on_middle;
+      std::array<bool, 3> pillars;
+      EXPECT_LT((nodes[i] - linear_node(s, tet, order, i, &on_middle, &pillars)).norm(), 1e-15) << i;
+    }
+  }
+}
+
+// A patch curved except along edge (0, 1): off the middle, nodes over that
+// edge's lateral quad are on the straight tet (as a flat neighbour across the
+// edge places them), nodes spanning all three pillars on the slab map.
+TEST(SlabTetNodes, StraightOnlyOverTheStraightEdge) {
+  Slab s(0.1, {false, false, false});
+  s.middle[highorder::triangle_node_index(2, {1, 0})].z() = 1; // the midpoint of edge (0, 1) back on the chord
+  s.patch.cap[1] += Vec3(0.3, 0.4, 0.2);
+  const auto parts = straight_parts(s.patch);
+  EXPECT_TRUE(parts.edge[2]); // edge (0, 1) is opposite corner 2
+  EXPECT_FALSE(parts.edge[0] || parts.edge[1] || parts.whole);
+  const int order = 3;
+  int over_edge = 0, inside = 0;
+  for (const auto& tet : canonical_split({0, 1, 2})) {
+    const auto nodes = slab_tet_nodes(s.patch, tet, order);
+    for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
+      bool on_middle;
+      std::array<bool, 3> pillars;
+      const Vec3 linear = linear_node(s, tet, order, i, &on_middle, &pillars);
+      if (on_middle) continue;
+      const int spans = pillars[0] + pillars[1] + pillars[2];
+      if (spans == 2 && !pillars[2]) {
+        EXPECT_LT((nodes[i] - linear).norm(), 1e-15);
+        ++over_edge;
+      } else if (spans == 3 && (nodes[i] - linear).norm() > 1e-3) {
+        ++inside; // on the curved slab map
+      }
+    }
+  }
+  EXPECT_GT(over_edge, 0);
+  EXPECT_GT(inside, 0);
+}
