@@ -4,6 +4,7 @@
 #include "curvetet/shell/straighten.hpp"
 
 #include "curvetet/core/error.hpp"
+#include "curvetet/geometry/predicates.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/element_map.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
@@ -54,9 +55,16 @@ bool slabs_positive(const PrismGeom& g, int k, const std::vector<Vec3>& nodes, c
       if (!pinched && !any_straight) continue;
     }
     // Some nodes are placed off the slab map (slab_tet_nodes): certify the
-    // tets themselves, at order k + 1.
+    // tets themselves, at order k + 1; straight ones by their sign.
+    const Slab slab = side == highorder::SlabSide::bottom ? Slab::bottom : Slab::top;
     for (const auto& tet : canonical_split(g.ids)) {
       if (collapsed[tet.pillar]) continue;
+      if (straight.whole) {
+        const auto& q = tet.corners;
+        if (geometry::orient3d(g.corner(slab, q[0]), g.corner(slab, q[1]), g.corner(slab, q[2]), g.corner(slab, q[3])) <= 0)
+          return false;
+        continue;
+      }
       const auto tet_nodes = slab_tet_nodes(patch, tet, k + 1);
       if (highorder::certify_tet(k + 1, tet_nodes.data(), o).validity != highorder::Validity::positive) return false;
     }
