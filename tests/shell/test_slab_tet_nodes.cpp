@@ -116,11 +116,12 @@ Vec3 linear_node(const Slab& s, const SlabTet& tet, int order, int i, bool* on_m
 
 } // namespace
 
-// A flat patch over a twisted prism (non-planar lateral quads): every node is
-// on the straight tets, the ones invariant 1 proves positive, not on the
-// bilinear slab map.
+// With straight parts on (Shell::straight_slab_parts): a flat patch over a
+// twisted prism (non-planar lateral quads) gives the straight tets, the ones
+// invariant 1 proves positive, not the bilinear slab map.
 TEST(SlabTetNodes, FlatPatchGivesTheStraightTets) {
   Slab s(0.0, {false, false, false});
+  s.patch.straight_parts = true;
   s.patch.cap[1] += Vec3(0.3, 0.4, 0.2); // twists the quads over edges (0, 1) and (1, 2)
   const int order = 3;
   EXPECT_TRUE(straight_parts(s.patch).whole);
@@ -140,6 +141,7 @@ TEST(SlabTetNodes, FlatPatchGivesTheStraightTets) {
 TEST(SlabTetNodes, StraightOnlyOverTheStraightEdge) {
   Slab s(0.1, {false, false, false});
   s.middle[highorder::triangle_node_index(2, {1, 0})].z() = 1; // the midpoint of edge (0, 1) back on the chord
+  s.patch.straight_parts = true;
   s.patch.cap[1] += Vec3(0.3, 0.4, 0.2);
   const auto parts = straight_parts(s.patch);
   EXPECT_TRUE(parts.edge[2]); // edge (0, 1) is opposite corner 2

@@ -46,6 +46,7 @@ volume::CurvedMiddle middle_of(const shell::Shell& s) {
   m.bottom = s.bottom;
   m.faces = s.faces;
   m.singular = s.singular;
+  m.straight_slab_parts = s.straight_slab_parts;
   m.degree = s.middle_nodes.empty() ? 1 : s.middle_degree;
   if (!s.middle_nodes.empty()) m.middle_nodes = s.middle_nodes;
   else

@@ -311,8 +311,19 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   out.epsilon = o.epsilon_abs > 0 ? o.epsilon_abs : o.epsilon * diag;
   out.faces_before = s.num_prisms();
   out.vertices_before = s.num_vertices();
-  if (fit->degree() > 1 && (s.middle_degree != fit->degree() || s.middle_nodes.size() != s.faces.size()))
+  if (fit->degree() > 1 && (s.middle_degree != fit->degree() || s.middle_nodes.size() != s.faces.size())) {
     set_flat_middle(s, fit->degree());
+    // Where the flat shell's slab map already folds, the curving could not
+    // start: place slab tets over straight middle parts straight (they are
+    // then the prisms' own tets, positive by invariant 1).
+    s.straight_slab_parts = false;
+    if (const int f = first_uncertified_prism(s); f >= 0) {
+      s.straight_slab_parts = true;
+      logger().info("coarsen: the slab map of prism {} folds on the flat middle; slab tets over straight middle parts "
+                    "are placed straight",
+                    f);
+    }
+  }
   if (fit->degree() == 1 && !s.middle_nodes.empty())
     throw Error(ExitCode::internal, "coarsen_shell: a curved shell needs a curved middle fit");
   ShellEditor editor(s);

@@ -37,14 +37,15 @@ std::vector<Vec3> edge_nodes(const std::vector<Vec3>& nodes, int k, int ia, int 
   return out;
 }
 
-bool slabs_positive(const PrismGeom& g, int k, const std::vector<Vec3>& nodes, const highorder::CertificateOptions& o) {
+bool slabs_positive(const PrismGeom& g, int k, const std::vector<Vec3>& nodes, bool straight_parts,
+                    const highorder::CertificateOptions& o) {
   for (const auto side : {highorder::SlabSide::bottom, highorder::SlabSide::top}) {
     const auto& cap = side == highorder::SlabSide::bottom ? g.bottom : g.top;
     std::array<bool, 3> collapsed{};
     for (int i = 0; i < 3; ++i) collapsed[i] = cap[i] == g.middle[i];
     if (collapsed[0] && collapsed[1] && collapsed[2]) continue; // a flat slab: no volume to certify
-    const SlabPatch patch{k, nodes.data(), cap, side == highorder::SlabSide::bottom, collapsed};
-    const StraightParts straight = straight_parts(patch);
+    const SlabPatch patch{k, nodes.data(), cap, side == highorder::SlabSide::bottom, collapsed, straight_parts};
+    const StraightParts straight = straight_parts ? shell::straight_parts(patch) : StraightParts{};
     const bool pinched = collapsed[0] || collapsed[1] || collapsed[2];
     const bool any_straight = straight.edge[0] || straight.edge[1] || straight.edge[2];
     // The output tets are pieces of the slab map: certify the map (one
@@ -166,7 +167,7 @@ bool CurvedMiddleFit::fit_and_check(const ShellEditor& editor, StarCandidate& c,
     const auto t1 = clock::now();
     bool ok = within_epsilon(fit.nodes);
     for (std::size_t k = 0; k < c.faces.size() && ok; ++k)
-      ok = slabs_positive(c.geoms[k], degree_, fit.nodes[k], certificate_);
+      ok = slabs_positive(c.geoms[k], degree_, fit.nodes[k], s.straight_slab_parts, certificate_);
     const auto t2 = clock::now();
     fits_ += 1;
     rejected_ += ok ? 0 : 1;
@@ -201,7 +202,7 @@ int first_uncertified_prism(const Shell& s) {
   highorder::CertificateOptions o;
   std::atomic<int> worst{std::numeric_limits<int>::max()};
   tbb::parallel_for(0, s.num_prisms(), [&](int f) {
-    if (!slabs_positive(prism_geom(s, f), s.middle_degree, s.middle_nodes[f], o)) {
+    if (!slabs_positive(prism_geom(s, f), s.middle_degree, s.middle_nodes[f], s.straight_slab_parts, o)) {
       int cur = worst.load();
       while (f < cur && !worst.compare_exchange_weak(cur, f)) {
       }

@@ -60,6 +60,10 @@ struct Shell {
   // point of MapPoint (prism, u, v) is that triangle's map at (u, v).
   int middle_degree = 1;
   std::vector<std::vector<Vec3>> middle_nodes;
+  // Slab tets off the middle are placed straight over straight middle parts
+  // (slab_tet_nodes.hpp), set when the slab map folds somewhere on the
+  // shell the curving starts from; else they follow the slab map.
+  bool straight_slab_parts = false;
   ShellFeatures features;                // feature chains and corners (empty: none)
 
   int num_vertices() const { return static_cast<int>(middle.size()); }

@@ -82,7 +82,9 @@ std::vector<Vec3> slab_tet_nodes(const SlabPatch& patch, const SlabTet& tet, int
     if (pinched[j]) ref[j][2] = patch.bottom ? 1.0 : 0.0;
     corner[j] = on_middle[j] ? patch.middle_nodes[k] : patch.cap[k];
   }
-  const StraightParts straight = patch.degree == 1 ? StraightParts{{true, true, true}, true} : straight_parts(patch);
+  const StraightParts straight = patch.degree == 1       ? StraightParts{{true, true, true}, true}
+                                 : patch.straight_parts ? straight_parts(patch)
+                                                        : StraightParts{};
   const int n = highorder::tet_node_count(order);
   std::vector<Vec3> out(n);
   for (int i = 0; i < n; ++i) {

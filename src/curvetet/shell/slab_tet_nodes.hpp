@@ -8,9 +8,12 @@
 // (1 - w) M(u, v) + w cap(u, v) for a top slab. Nodes off the middle
 // surface are placed on the straight tet instead where the slab map is
 // degenerate or may fold although the straight prism is positive: next to
-// a singular vertex (pinched pillar: det J = 0) and over straight parts of
-// the middle (a flat patch, or the lateral quad over a straight middle
-// edge: a bilinear quad). Each rule depends only on the node's carrier
+// a singular vertex (pinched pillar: det J = 0) and, with straight_parts,
+// over straight parts of the middle (a flat patch, or the lateral quad over
+// a straight middle edge: a bilinear quad). The second rule is per shell:
+// it costs quality (a tet with straight lateral faces and a curved
+// interior), so it is on only when the flat shell the curving starts from
+// has a prism the slab map folds (coarsen.cpp). Each rule depends only on the node's carrier
 // (corners with non-zero weight) and on data both prisms of an edge share,
 // so tets sharing a node agree. Nodes on the middle are always on M.
 #include "curvetet/mesh/surface_mesh.hpp"
@@ -29,6 +32,7 @@ struct SlabPatch {
   std::array<Vec3, 3> cap;            // the linear cap's corners below/above middle corners 0..2
   bool bottom = true;                 // bottom slab (cap below) or top slab
   std::array<bool, 3> pinched{};      // corner is a singular vertex (cap == middle corner)
+  bool straight_parts = false;        // apply the straight-middle rule (Shell::straight_slab_parts)
 };
 
 // Which parts of the middle patch are flat (every node within 1e-12 of the

@@ -33,6 +33,7 @@ shell::SlabPatch slab_patch(const CurvedMiddle& s, int face, Cap cap) {
   p.degree = s.degree;
   p.middle_nodes = s.middle_nodes[face].data();
   p.bottom = cap == Cap::bottom;
+  p.straight_parts = s.straight_slab_parts;
   for (int k = 0; k < 3; ++k) {
     p.cap[k] = caps[f[k]];
     p.pinched[k] = s.singular[f[k]];

@@ -42,6 +42,7 @@ struct CurvedMiddle {
   std::vector<mesh::Vec3> top;         // per shell vertex; only read with an exterior fill
   int degree = 1;                      // k of the middle patches
   std::vector<std::vector<mesh::Vec3>> middle_nodes; // per face: triangle_node_count(k) nodes, corners first
+  bool straight_slab_parts = false;    // shell::Shell::straight_slab_parts
 };
 
 struct AssemblyStats {
