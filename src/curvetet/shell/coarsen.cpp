@@ -306,11 +306,15 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   const auto start = clock_type::now();
   const LinearMiddle linear;
   if (!fit) fit = &linear;
+  CoarsenStats flat_phase;
+  const bool two_phases = o.flat_first && fit->degree() > 1 && s.middle_nodes.empty();
+  if (two_phases) flat_phase = coarsen_shell(s, o, &linear);
   const double diag = mesh::bbox_diagonal(s.input.vertices);
   CoarsenStats out;
   out.epsilon = o.epsilon_abs > 0 ? o.epsilon_abs : o.epsilon * diag;
-  out.faces_before = s.num_prisms();
-  out.vertices_before = s.num_vertices();
+  out.faces_before = two_phases ? flat_phase.faces_before : s.num_prisms();
+  out.vertices_before = two_phases ? flat_phase.vertices_before : s.num_vertices();
+  out.passes = flat_phase.passes;
   if (fit->degree() > 1 && (s.middle_degree != fit->degree() || s.middle_nodes.size() != s.faces.size())) {
     set_flat_middle(s, fit->degree());
     // Where the flat shell's slab map already folds, the curving could not

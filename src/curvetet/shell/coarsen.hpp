@@ -45,6 +45,12 @@ struct CoarsenOptions {
   int max_rounds = 10;
   double min_round_gain = 0.01; // stop when a round removes fewer faces than this fraction
   bool debug_invariants = false; // global check (invariants 1-3, distance, map) after every pass
+  // With a curved fit: coarsen with a flat middle first (fast, and where a
+  // curved patch gains nothing, e.g. flat CAD facets, the greedy order is
+  // not disturbed by fits and certificates), then go on coarsening that
+  // shell with the curved middle, every operation fitting and certifying.
+  // bunny: 372 faces (curved from the start: 396; flat only: 512).
+  bool flat_first = true;
 };
 
 struct PassStats {
