@@ -2,10 +2,13 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
+#include "curvetet/volume/tet_amips.hpp"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -13,28 +16,12 @@
 
 namespace curvetet::volume::exact {
 
-double amips(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  // J = E W^{-1}, W the regular tet's edge matrix with unit edges.
-  static const Eigen::Matrix3d w_inv = [] {
-    Eigen::Matrix3d w;
-    w << 1, 0.5, 0.5, 0, std::sqrt(3.0) / 2, std::sqrt(3.0) / 6, 0, 0, std::sqrt(2.0 / 3.0);
-    return Eigen::Matrix3d(w.inverse());
-  }();
-  Eigen::Matrix3d e;
-  e.col(0) = b - a;
-  e.col(1) = c - a;
-  e.col(2) = d - a;
-  const Eigen::Matrix3d j = e * w_inv;
-  const double det = j.determinant();
-  if (!(det > 0)) return std::numeric_limits<double>::infinity();
-  return j.squaredNorm() / (3 * std::cbrt(det * det));
-}
-
 namespace {
 
 using Tet = std::array<int, 4>;
 // Largest AMIPS energy a collapse may give a tet whose 4 vertices are frozen.
 constexpr double kFrozenTetLimit = 6.0;
+constexpr double kStale = std::numeric_limits<double>::quiet_NaN();
 
 class Optimizer {
  public:
@@ -45,6 +32,10 @@ class Optimizer {
     for (int t = 0; t < static_cast<int>(m_.tets.size()); ++t)
       for (int x : m_.tets[t]) vt_[x].push_back(t);
     alive_.assign(m_.tets.size(), 1);
+    energy_.assign(m_.tets.size(), kStale);
+    touched_.assign(m_.v.size(), 0);
+    smooth_failed_.assign(m_.v.size(), 0);
+    max_failed_.assign(m_.v.size(), 0);
     pinned_.assign(m_.v.size(), 0);
     for (const auto& st : m_.on_surface) pinned_[st.vertex] = 1;
   }
@@ -95,10 +86,13 @@ class Optimizer {
     if (removed.empty()) return false;
     if (!link_condition(u, v) || !boundary_link_condition(u, v)) return false;
     for (int t : removed) kill(t);
+    ++clock_;
     for (int t : std::vector<int>(vt_[v])) {
       for (int& x : m_.tets[t])
         if (x == v) x = u;
       vt_[u].push_back(t);
+      energy_[t] = kStale;
+      for (int x : m_.tets[t]) touched_[x] = clock_;
     }
     vt_[v].clear();
     pinned_[v] = 0;
@@ -111,12 +105,32 @@ class Optimizer {
 
   double energy(const Tet& t) const {
     const auto& d = m_.v.d;
-    return amips(d[t[0]], d[t[1]], d[t[2]], d[t[3]]);
+    return tet_amips(d[t[0]], d[t[1]], d[t[2]], d[t[3]]);
+  }
+  // Energy of live tet t, cached until it or one of its vertices changes.
+  double tet_energy(int t) {
+    if (std::isnan(energy_[t])) energy_[t] = energy(m_.tets[t]);
+    return energy_[t];
   }
   double energy_at(const Tet& t, int v, const Vec3& p) const {
     const Vec3* x[4];
     for (int k = 0; k < 4; ++k) x[k] = t[k] == v ? &p : &m_.v.d[t[k]];
-    return amips(*x[0], *x[1], *x[2], *x[3]);
+    return tet_amips(*x[0], *x[1], *x[2], *x[3]);
+  }
+  // Energy of t with v at p, and its gradient with respect to v's position.
+  double energy_gradient_at(const Tet& t, int v, const Vec3& p, Vec3& grad) const {
+    const Vec3* x[4];
+    int corner = 0;
+    for (int k = 0; k < 4; ++k) {
+      x[k] = t[k] == v ? &p : &m_.v.d[t[k]];
+      if (t[k] == v) corner = k;
+    }
+    return tet_amips_gradient(*x[0], *x[1], *x[2], *x[3], corner, grad);
+  }
+  void move(int v, const Vec3& p) {
+    m_.v.set(v, p);
+    touched_[v] = ++clock_;
+    for (int t : vt_[v]) energy_[t] = kStale;
   }
 
   // Rounds every rational vertex whose star stays positive; returns how many
@@ -127,7 +141,7 @@ class Optimizer {
       if (m_.v.exact[v] || vt_[v].empty() || pinned(v)) continue;
       const Vec3 p = nearest_double(m_.v.q[v]);
       if (star_positive_at(v, p)) {
-        m_.v.set(v, p);
+        move(v, p);
       } else {
         ++left;
       }
@@ -148,15 +162,39 @@ class Optimizer {
   }
 
   // --- smoothing: descend the star's sum of squared AMIPS energies without
-  // raising its maximum; every tet stays positive (exact). ---
+  // raising its maximum; every tet stays positive (exact). A vertex whose
+  // star did not change since its last failed attempt is not retried. ---
   bool smooth(int v) {
+    if (unchanged_since(v, smooth_failed_[v])) return false;
+    if (descend(v)) return true;
+    smooth_failed_[v] = clock_;
+    return false;
+  }
+
+  // Whether nothing in v's star (its tets, their vertices' positions)
+  // changed after clock value `when` (0: never recorded).
+  bool unchanged_since(int v, std::uint64_t when) const {
+    if (when == 0 || touched_[v] > when) return false;
+    for (int t : vt_[v])
+      for (int x : m_.tets[t])
+        if (touched_[x] > when) return false;
+    return true;
+  }
+  std::uint64_t clock() const { return clock_; }
+
+ private:
+  bool descend(int v) {
     if (m_.frozen[v] || pinned(v) || vt_[v].empty()) return false;
     const Vec3 p0 = m_.v.d[v];
     double e0 = 0, max0 = 0, len = 0;
+    Vec3 g = Vec3::Zero(); // gradient of the sum of squares
     for (int t : vt_[v]) {
-      const double e = energy(m_.tets[t]);
+      Vec3 gt;
+      const double e = energy_gradient_at(m_.tets[t], v, p0, gt);
+      if (!std::isfinite(e)) return false;
       e0 += e * e; // squared: the worst tets dominate
       max0 = std::max(max0, e);
+      g += 2 * e * gt;
       for (int x : m_.tets[t]) len += (m_.v.d[x] - p0).norm();
     }
     len /= 3.0 * static_cast<double>(vt_[v].size());
@@ -171,14 +209,6 @@ class Optimizer {
       if (mx) *mx = m;
       return s;
     };
-    const double h = 1e-5 * len;
-    Vec3 g;
-    for (int k = 0; k < 3; ++k) {
-      Vec3 a = p0, b = p0;
-      a[k] += h;
-      b[k] -= h;
-      g[k] = (sum_at(a, nullptr) - sum_at(b, nullptr)) / (2 * h);
-    }
     if (!g.allFinite() || g.norm() == 0) return false;
     const Vec3 dir = -g.normalized();
     for (double step = 0.25 * len; step > 1e-4 * len; step *= 0.5) {
@@ -187,17 +217,26 @@ class Optimizer {
       const double s = sum_at(p, &mx);
       if (!(s < e0) || !(mx <= max0)) continue;
       if (!star_positive_at(v, p)) continue;
-      m_.v.set(v, p);
+      move(v, p);
       ++stats_.smooths;
       return true;
     }
     return false;
   }
 
+ public:
   // --- worst-tet smoothing: lowers the maximum energy of v's star by a
   // compass search (the gradient of the worst tet first, then the axes);
   // every accepted position keeps the star positive (exact). ---
   bool smooth_max(int v) {
+    if (unchanged_since(v, max_failed_[v])) return false;
+    if (compass_search(v)) return true;
+    max_failed_[v] = clock_;
+    return false;
+  }
+
+ private:
+  bool compass_search(int v) {
     if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || vt_[v].empty()) return false;
     Vec3 p = m_.v.d[v];
     double len = 0;
@@ -220,15 +259,9 @@ class Optimizer {
     double best = max_at(p, &worst);
     bool moved = false;
     for (double step = 0.2 * len; step > 1e-3 * len;) {
-      // descent direction of the worst tet's energy (central differences)
-      const double h = 1e-6 * len;
-      Vec3 g;
-      for (int k = 0; k < 3; ++k) {
-        Vec3 a = p, b = p;
-        a[k] += h;
-        b[k] -= h;
-        g[k] = energy_at(m_.tets[worst], v, a) - energy_at(m_.tets[worst], v, b);
-      }
+      // descent direction of the worst tet's energy
+      Vec3 g = Vec3::Zero();
+      energy_gradient_at(m_.tets[worst], v, p, g);
       std::array<Vec3, 7> dirs = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(),
                                   Vec3::UnitZ(), -Vec3::UnitZ(), Vec3::Zero()};
       if (g.allFinite() && g.norm() > 0) dirs[6] = -g.normalized();
@@ -247,12 +280,13 @@ class Optimizer {
       if (!improved) step *= 0.5;
     }
     if (moved) {
-      m_.v.set(v, p);
+      move(v, p);
       ++stats_.smooths;
     }
     return moved;
   }
 
+ public:
   // Moves an unrounded vertex to some double position keeping its star
   // positive (towards the star's centroid).
   bool relocate(int v) {
@@ -270,7 +304,7 @@ class Optimizer {
     for (double a : {1.0, 0.5, 0.25, 0.1, 0.01, 1e-3, 1e-5, 1e-8}) {
       const Vec3 p = p0 + a * (c - p0);
       if (star_positive_at(v, p)) {
-        m_.v.set(v, p);
+        move(v, p);
         return true;
       }
     }
@@ -280,12 +314,13 @@ class Optimizer {
   // --- collapse v onto u ---
   bool collapse(int v, int u, bool require_quality) {
     if (m_.frozen[v] || pinned(v) || u == v) return false;
-    // new tets and their energies
-    double old_max = 0, new_max = 0;
+    double old_max = 0;
+    for (int t : vt_[v]) old_max = std::max(old_max, tet_energy(t));
+    const double bound = std::max(old_max, coarsen_energy_);
+    // The new tets: energy first (cheap), exact orientation last.
     std::vector<int> removed;
     for (int t : vt_[v]) {
       const Tet& q = m_.tets[t];
-      old_max = std::max(old_max, energy(q));
       if (std::find(q.begin(), q.end(), u) != q.end()) {
         removed.push_back(t);
         continue;
@@ -293,25 +328,28 @@ class Optimizer {
       Tet n = q;
       for (int& x : n)
         if (x == v) x = u;
-      if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
-      const double e = energy(n);
-      // A tet on frozen vertices only can never be smoothed: keep it good.
-      if (require_quality && e > std::max(kFrozenTetLimit, coarsen_energy_) && m_.frozen[n[0]] && m_.frozen[n[1]] && m_.frozen[n[2]] &&
-          m_.frozen[n[3]])
-        return false;
-      new_max = std::max(new_max, e);
-      if (require_quality)
+      if (require_quality) {
+        const double e = energy(n);
+        if (!(e <= bound)) return false;
+        // A tet on frozen vertices only can never be smoothed: keep it good.
+        if (e > std::max(kFrozenTetLimit, coarsen_energy_) && m_.frozen[n[0]] && m_.frozen[n[1]] && m_.frozen[n[2]] &&
+            m_.frozen[n[3]])
+          return false;
         for (int x : n)
           if (x != u && too_long(u, x) && !edge_exists(u, x)) return false;
+      }
+      if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
     }
     if (removed.empty()) return false; // not an edge
-    if (require_quality && !(new_max <= std::max(old_max, coarsen_energy_))) return false;
     if (!link_condition(u, v)) return false;
     for (int t : removed) kill(t);
+    ++clock_;
     for (int t : std::vector<int>(vt_[v])) {
       for (int& x : m_.tets[t])
         if (x == v) x = u;
       vt_[u].push_back(t);
+      energy_[t] = kStale;
+      for (int x : m_.tets[t]) touched_[x] = clock_;
     }
     vt_[v].clear();
     ++stats_.collapses;
@@ -335,7 +373,7 @@ class Optimizer {
     const int c = others[0], d = others[2], e = others[4];
     if (face_exists(c, d, e)) return false;
     double old_max = 0;
-    for (int t : ring) old_max = std::max(old_max, energy(m_.tets[t]));
+    for (int t : ring) old_max = std::max(old_max, tet_energy(t));
     // a and b must lie strictly on opposite sides of cde (then ab pierces it).
     const int sa = m_.v.orient(c, d, e, a), sb = m_.v.orient(c, d, e, b);
     if (sa == 0 || sb != -sa) return false;
@@ -362,7 +400,7 @@ class Optimizer {
     const auto c = ring_cycle(a, b, ring);
     if (c.empty()) return false;
     double old_max = 0;
-    for (int t : ring) old_max = std::max(old_max, energy(m_.tets[t]));
+    for (int t : ring) old_max = std::max(old_max, tet_energy(t));
     const double bound = std::max(old_max, coarsen_energy_);
     for (int i = 0; i < k; ++i) {
       const auto nt = fan_tets(a, b, c, i);
@@ -502,7 +540,7 @@ class Optimizer {
     for (int x : m_.tets[other])
       if (x != f[0] && x != f[1] && x != f[2]) e = x;
     if (edge_exists(d, e)) return false;
-    const double old_max = std::max(energy(q), energy(m_.tets[other]));
+    const double old_max = std::max(tet_energy(t), tet_energy(other));
     std::array<Tet, 3> nt;
     double new_max = 0;
     for (int i = 0; i < 3; ++i) {
@@ -528,6 +566,7 @@ class Optimizer {
     return out;
   }
   int num_tets() const { return static_cast<int>(m_.tets.size()); }
+  std::size_t num_alive() const { return static_cast<std::size_t>(std::count(alive_.begin(), alive_.end(), 1)); }
   const std::vector<int>& star(int v) const { return vt_[v]; }
 
   mesh::LinearTetMesh extract(int num_keep) {
@@ -562,6 +601,11 @@ class Optimizer {
   std::vector<std::pair<int, bool>> journal_; // (tet, added) of the open transaction
   std::vector<std::vector<int>> vt_;
   std::vector<char> alive_;
+  std::vector<double> energy_; // per tet; kStale until computed
+  // Change stamps: touched_[x] = clock_ when x moved or a tet at x changed;
+  // smooth_failed_[x], max_failed_[x] = clock_ at x's last failed smoothing.
+  std::uint64_t clock_ = 1;
+  std::vector<std::uint64_t> touched_, smooth_failed_, max_failed_;
   std::vector<char> pinned_;
 
   // Boundary faces (x, p, q) around x, as sorted (p, q): faces of one tet.
@@ -631,7 +675,9 @@ class Optimizer {
   void kill(int t) {
     if (journaling_) journal_.emplace_back(t, false);
     alive_[t] = 0;
+    ++clock_;
     for (int x : m_.tets[t]) {
+      touched_[x] = clock_;
       auto& l = vt_[x];
       l.erase(std::find(l.begin(), l.end(), t));
     }
@@ -640,7 +686,12 @@ class Optimizer {
     const int id = num_tets();
     m_.tets.push_back(t);
     alive_.push_back(1);
-    for (int x : t) vt_[x].push_back(id);
+    energy_.push_back(kStale);
+    ++clock_;
+    for (int x : t) {
+      vt_[x].push_back(id);
+      touched_[x] = clock_;
+    }
     if (journaling_) journal_.emplace_back(id, true);
     return id;
   }
@@ -718,18 +769,21 @@ class Optimizer {
   }
 };
 
-void collapse_pass(Optimizer& o, bool only_rational) {
+// `failed[v]`: the optimizer's clock at v's last failed collapse (0: none);
+// v is not retried while its star stays unchanged.
+void collapse_pass(Optimizer& o, bool only_rational, std::vector<std::uint64_t>& failed) {
   auto& m = o.mesh();
+  failed.resize(m.v.size(), 0);
   for (int v = 0; v < m.v.size(); ++v) {
     if (m.frozen[v] || o.star(v).empty()) continue;
     const bool rational = !m.v.exact[v];
     if (only_rational && !rational) continue;
+    if (o.unchanged_since(v, failed[v])) continue;
     auto nb = o.neighbours(v);
     std::sort(nb.begin(), nb.end(), [&](int a, int b) {
       return (m.v.d[a] - m.v.d[v]).squaredNorm() < (m.v.d[b] - m.v.d[v]).squaredNorm();
     });
-    for (int u : nb)
-      if (o.collapse(v, u, !rational)) break;
+    if (std::none_of(nb.begin(), nb.end(), [&](int u) { return o.collapse(v, u, !rational); })) failed[v] = o.clock();
   }
 }
 
@@ -770,7 +824,7 @@ void flip_pass(Optimizer& o, double threshold) {
   const int nt = o.num_tets();
   for (int t = 0; t < nt; ++t) {
     if (!o.alive(t)) continue;
-    if (o.energy(m.tets[t]) < threshold) continue;
+    if (o.tet_energy(t) < threshold) continue;
     const auto q = m.tets[t];
     bool done = false;
     for (int i = 0; i < 4 && !done; ++i)
@@ -797,17 +851,24 @@ std::size_t flip_32_pass(Optimizer& o) {
 }
 
 // Worst-tet passes: the free vertices of the tets whose energy is within a
-// factor of the current maximum (those decide the max AMIPS).
+// factor of the current maximum over tets with a free vertex (those that
+// smoothing can change); stops when a pass no longer lowers that maximum.
 void worst_pass(Optimizer& o, int passes) {
   auto& m = o.mesh();
+  auto has_free_vertex = [&](int t) {
+    return std::any_of(m.tets[t].begin(), m.tets[t].end(), [&](int x) { return !m.frozen[x]; });
+  };
+  double previous = std::numeric_limits<double>::infinity();
   for (int pass = 0; pass < passes; ++pass) {
     double mx = 0;
     for (int t = 0; t < o.num_tets(); ++t)
-      if (o.alive(t)) mx = std::max(mx, o.energy(m.tets[t]));
+      if (o.alive(t) && has_free_vertex(t)) mx = std::max(mx, o.tet_energy(t));
+    if (!(mx < previous)) break;
+    previous = mx;
     const double threshold = std::max(2.0, 0.5 * mx);
     std::vector<int> bad;
     for (int t = 0; t < o.num_tets(); ++t)
-      if (o.alive(t) && o.energy(m.tets[t]) >= threshold) bad.push_back(t);
+      if (o.alive(t) && o.tet_energy(t) >= threshold) bad.push_back(t);
     flip_pass(o, threshold);
     bool any = false;
     for (int t : bad)
@@ -827,13 +888,24 @@ void smooth_pass(Optimizer& o) {
 
 mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const FillOptions& options, FillStats& stats) {
   Optimizer o(std::move(m), stats, options);
+  std::vector<std::uint64_t> collapse_failed;
+  auto tic = std::chrono::steady_clock::now();
+  auto phase = [&](const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    logger().debug("volume: optimize phase {}: {:.3f} s, {} tets", name, std::chrono::duration<double>(now - tic).count(), o.num_alive());
+    tic = now;
+  };
   std::size_t on_surface = surface_steiner_pass(o);
   std::size_t left = o.round_pass();
   stats.unrounded_after_first_pass = left;
+  phase("round");
   for (int round = 0; round < options.optimize_rounds; ++round) {
-    collapse_pass(o, false);
+    collapse_pass(o, false, collapse_failed);
+    phase("collapse");
     flip_pass(o, 3.0);
+    phase("flip");
     smooth_pass(o);
+    phase("smooth");
     left = o.round_pass();
     logger().debug("volume: optimize round {}: {} collapses, {} flips, {} smooths, {} unrounded", round,
                    stats.collapses, stats.flips, stats.smooths, left);
@@ -842,15 +914,19 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
   // neither removes a tet.
   for (int round = 0; options.coarsen_energy > 0 && round < 10; ++round) {
     const std::size_t collapses = stats.collapses;
-    collapse_pass(o, false);
+    collapse_pass(o, false, collapse_failed);
+    phase("coarsen collapse");
     const std::size_t flips = flip_32_pass(o);
+    phase("coarsen flip");
     smooth_pass(o);
+    phase("coarsen smooth");
     if (stats.collapses == collapses && flips == 0) break;
   }
   if (options.optimize_rounds > 0) worst_pass(o, 8);
+  phase("worst");
   // Whatever is still rational: remove it or move it to a double position.
   for (int attempt = 0; attempt < 20 && left > 0; ++attempt) {
-    collapse_pass(o, true);
+    collapse_pass(o, true, collapse_failed);
     auto& mm = o.mesh();
     for (int v = 0; v < mm.v.size(); ++v)
       if (!mm.v.exact[v] && !o.star(v).empty()) o.relocate(v);
@@ -865,7 +941,7 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
   auto out = o.extract(num_keep);
   double sum = 0, mx = 0;
   for (const auto& t : out.tets) {
-    const double e = amips(out.vertices[t[0]], out.vertices[t[1]], out.vertices[t[2]], out.vertices[t[3]]);
+    const double e = tet_amips(out.vertices[t[0]], out.vertices[t[1]], out.vertices[t[2]], out.vertices[t[3]]);
     sum += e;
     mx = std::max(mx, e);
   }

@@ -18,8 +18,4 @@ namespace curvetet::volume::exact {
 // cannot be rounded.
 mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const FillOptions& options, FillStats& stats);
 
-// Conformal AMIPS energy of a tet, tr(JᵀJ) / (3 det(J)^{2/3}) relative to the
-// regular tet (1 for a regular tet, +inf for a flat or inverted one).
-double amips(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
-
 } // namespace curvetet::volume::exact
