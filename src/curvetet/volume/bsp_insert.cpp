@@ -715,7 +715,6 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   out.num_cuts = cx.num_cuts;
   out.num_cells = cx.cells.size();
   out.refined.resize(nt);
-  std::vector<int> face_center(cx.faces.size(), -2);
   auto centroid = [&](const std::vector<int>& ids) {
     QPoint g;
     for (int i : ids)
@@ -723,14 +722,103 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     for (int k = 0; k < 3; ++k) g.c[k] /= static_cast<long>(ids.size());
     return g;
   };
-  auto face_triangles = [&](int f, std::vector<std::array<int, 3>>& tris) {
+  auto collinear = [&](int a, int b, int c) {
+    if (cx.v.exact[a] && cx.v.exact[b] && cx.v.exact[c]) {
+      // Exact on doubles: not collinear iff some point a + δ·e_k (a double
+      // point) lies off the plane through them.
+      const Vec3& A = cx.v.d[a];
+      for (int k = 0; k < 3; ++k) {
+        Vec3 p = A;
+        p[k] = A[k] == 0 ? 1.0 : 2 * A[k];
+        if (geometry::orient3d(A, cx.v.d[b], cx.v.d[c], p) != 0) return false;
+      }
+      return true;
+    }
+    const auto& A = cx.v.q[a].c;
+    const auto& B = cx.v.q[b].c;
+    const auto& C = cx.v.q[c].c;
+    const mpq_class u[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
+    const mpq_class w[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+    return u[1] * w[2] == u[2] * w[1] && u[2] * w[0] == u[0] * w[2] && u[0] * w[1] == u[1] * w[0];
+  };
+  // Face polygons are triangulated without new vertices, once: both cells
+  // of a face use the same triangles. Convex loops may hold collinear
+  // vertices (where neighbouring faces were split); a fan from loop[k] is
+  // used when no fan triangle is flat, else ear clipping at strict corners
+  // (never leaving fewer than three corners, so no ear is ever flat).
+  std::vector<std::vector<std::array<int, 3>>> face_tris(cx.faces.size());
+  auto fan = [&](const std::vector<int>& l, std::size_t k, std::vector<std::array<int, 3>>& tris) {
+    const std::size_t n = l.size();
+    for (std::size_t j = 1; j + 1 < n; ++j)
+      if (collinear(l[k], l[(k + j) % n], l[(k + j + 1) % n])) return false;
+    for (std::size_t j = 1; j + 1 < n; ++j) tris.push_back({l[k], l[(k + j) % n], l[(k + j + 1) % n]});
+    return true;
+  };
+  auto ear_clip = [&](std::vector<int> l, std::vector<std::array<int, 3>>& tris) {
+    auto corner = [&](std::size_t i) {
+      const std::size_t n = l.size();
+      return !collinear(l[(i + n - 1) % n], l[i], l[(i + 1) % n]);
+    };
+    while (l.size() > 3) {
+      const std::size_t n = l.size();
+      std::size_t corners = 0;
+      for (std::size_t i = 0; i < n; ++i) corners += corner(i);
+      std::size_t pick = n;
+      for (std::size_t i = 0; i < n && pick == n; ++i)
+        if (corner(i) && (corners > 3 || !corner((i + n - 1) % n) || !corner((i + 1) % n))) pick = i;
+      if (pick == n) throw Error(ExitCode::internal, "volume: BSP face with fewer than three corners");
+      tris.push_back({l[(pick + n - 1) % n], l[pick], l[(pick + 1) % n]});
+      l.erase(l.begin() + static_cast<std::ptrdiff_t>(pick));
+    }
+    tris.push_back({l[0], l[1], l[2]});
+  };
+  // Triangles of face f: as decided, else a fan from `apex` when it is a
+  // loop vertex and that fan has no flat triangle, else a fan from any
+  // corner, else ear clipping.
+  auto decide_face = [&](int f, int apex) -> const std::vector<std::array<int, 3>>& {
+    auto& tris = face_tris[f];
+    if (!tris.empty()) return tris;
     const auto& l = cx.faces[f].loop;
     if (l.size() == 3) {
       tris.push_back({l[0], l[1], l[2]});
-      return;
+      return tris;
     }
-    if (face_center[f] == -2) face_center[f] = cx.v.add(centroid(l));
-    for (std::size_t k = 0; k < l.size(); ++k) tris.push_back({face_center[f], l[k], l[(k + 1) % l.size()]});
+    const auto at = std::find(l.begin(), l.end(), apex);
+    if (at != l.end() && fan(l, static_cast<std::size_t>(at - l.begin()), tris)) return tris;
+    if (!fan(l, 0, tris)) ear_clip(l, tris);
+    return tris;
+  };
+  // Whether apex can cone the cell: every face on it is (or can be) fanned
+  // from it; then `cone` holds the positive tets over the other triangles.
+  std::vector<std::array<int, 4>> cone;
+  std::vector<std::array<int, 3>> trial;
+  auto vertex_cone = [&](int c, int apex) {
+    cone.clear();
+    for (int f : cx.cells[c]) {
+      const auto& l = cx.faces[f].loop;
+      const bool on = std::find(l.begin(), l.end(), apex) != l.end();
+      const std::vector<std::array<int, 3>>* tris = &face_tris[f];
+      if (tris->empty()) {
+        if (on && l.size() > 3) {
+          trial.clear();
+          if (!fan(l, static_cast<std::size_t>(std::find(l.begin(), l.end(), apex) - l.begin()), trial)) return false;
+        }
+        if (on) continue; // every triangle has the apex as a corner
+        trial.clear();
+        if (l.size() == 3) trial.push_back({l[0], l[1], l[2]});
+        else if (!fan(l, 0, trial)) ear_clip(l, trial);
+        tris = &trial;
+      }
+      for (const auto& t : *tris) {
+        if (t[0] == apex || t[1] == apex || t[2] == apex) continue;
+        std::array<int, 4> q{t[0], t[1], t[2], apex};
+        const int o = cx.v.orient(q[0], q[1], q[2], q[3]);
+        if (o == 0) return false;
+        if (o < 0) std::swap(q[0], q[1]);
+        cone.push_back(q);
+      }
+    }
+    return true;
   };
   auto add_tet = [&](std::array<int, 4> t) {
     const int o = cx.v.orient(t[0], t[1], t[2], t[3]);
@@ -738,21 +826,39 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     if (o < 0) std::swap(t[0], t[1]);
     out.tets.push_back(t);
   };
+  std::size_t centroid_cells = 0;
   for (int c = 0; c < ncell; ++c) {
     if (winding[c] == kUnset) throw Error(ExitCode::internal, "volume: BSP cell not reached");
     if (winding[c] != keep_winding) continue;
-    std::vector<std::array<int, 3>> tris;
-    for (int f : cx.cells[c]) face_triangles(f, tris);
-    if (cx.cells[c].size() == 4 && tris.size() == 4) {
-      std::vector<int> vs = cx.cell_vertices(c);
+    const std::vector<int> vs = cx.cell_vertices(c);
+    if (vs.size() == 4) {
+      for (int f : cx.cells[c]) decide_face(f, -1);
       add_tet({vs[0], vs[1], vs[2], vs[3]});
       continue;
     }
-    const int g = cx.v.add(centroid(cx.cell_vertices(c)));
-    for (const auto& t : tris) add_tet({t[0], t[1], t[2], g});
+    int apex = -1;
+    for (int a : vs)
+      if (vertex_cone(c, a)) {
+        apex = a;
+        break;
+      }
+    for (int f : cx.cells[c]) decide_face(f, apex);
+    if (apex >= 0) {
+      out.tets.insert(out.tets.end(), cone.begin(), cone.end());
+      continue;
+    }
+    // No vertex cones the cell: a new vertex at its centroid does.
+    ++centroid_cells;
+    const int g = cx.v.add(centroid(vs));
+    for (int f : cx.cells[c])
+      for (const auto& t : face_tris[f]) add_tet({t[0], t[1], t[2], g});
   }
   for (int f = 0; f < static_cast<int>(cx.faces.size()); ++f)
-    if (cx.faces[f].tri >= 0) face_triangles(f, out.refined[cx.faces[f].tri]);
+    if (cx.faces[f].tri >= 0) {
+      const auto& tris = decide_face(f, -1);
+      out.refined[cx.faces[f].tri].insert(out.refined[cx.faces[f].tri].end(), tris.begin(), tris.end());
+    }
+  logger().debug("volume: {} BSP cells coned from a new centroid", centroid_cells);
   lap("cell tetrahedralization");
   out.vertices = std::move(cx.v);
   return out;
