@@ -62,14 +62,22 @@ double middle_length(const ShellEditor& e, int a, int b) {
 
 class CollapseOp final : public Operation {
  public:
+  explicit CollapseOp(SmoothParams p) : p_(p) {}
   OpKind kind() const override { return OpKind::collapse; }
   std::optional<double> priority(const ShellEditor& e, int a, int b) const override { return middle_length(e, a, b); }
+  // Both directions keeping `to`'s pillar first, then both re-aiming it.
   std::vector<StarCandidate> candidates(const ShellEditor& e, int a, int b) const override {
     std::vector<StarCandidate> out;
     for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}})
       if (auto c = collapse_candidate(e, from, to)) out.push_back(std::move(*c));
+    if (out.empty()) return out;
+    for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}})
+      if (auto c = collapse_reaimed_candidate(e, from, to, p_)) out.push_back(std::move(*c));
     return out;
   }
+
+ private:
+  SmoothParams p_;
 };
 
 class FlipOp final : public Operation {
@@ -333,9 +341,10 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   ShellEditor editor(s);
   const StarContext ctx{editor, *fit, out.epsilon, o.quality_bound, o.slab_quality_bound};
   const auto invariants = default_star_invariants();
-  const CollapseOp collapse;
+  const SmoothParams pillar_params{o.target_pillar * diag, o.singular_dot};
+  const CollapseOp collapse(pillar_params);
   const FlipOp flip;
-  const SmoothOp smooth(SmoothParams{o.target_pillar * diag, o.singular_dot});
+  const SmoothOp smooth(pillar_params);
   const RefitOp refit;
   if (o.debug_invariants) debug_check(s, out.epsilon, "coarsen start");
   for (int round = 0; round < o.max_rounds; ++round) {

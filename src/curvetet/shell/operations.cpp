@@ -23,6 +23,28 @@ std::vector<int> sorted(std::vector<int> v) {
   return v;
 }
 
+// Pillar of v rotated to the extrusion direction of `star` (faces around v,
+// v's middle at `mid`) and each side's length zoomed toward the target (at
+// most x1.5 per step, never shortened). False where the direction is singular.
+bool reaimed_pillar(const Shell& s, const std::vector<Tri>& star, int v, const Vec3& mid, const SmoothParams& p,
+                    Vec3& bottom, Vec3& top) {
+  std::vector<Vec3> normals;
+  for (const Tri& t : star) {
+    Vec3 q[3];
+    for (int k = 0; k < 3; ++k) q[k] = t[k] == v ? mid : s.middle[t[k]];
+    const Vec3 n = (q[1] - q[0]).cross(q[2] - q[0]);
+    if (!(n.norm() > 0)) return false;
+    normals.push_back(n.normalized());
+  }
+  const auto dir = extrusion_direction(normals, p.singular_dot);
+  if (dir.singular) return false;
+  const double lt = (s.top[v] - s.middle[v]).norm(), lb = (s.middle[v] - s.bottom[v]).norm();
+  const double nt = std::min(p.target_pillar, 1.5 * lt), nb = std::min(p.target_pillar, 1.5 * lb);
+  top = mid + std::max(nt, lt) * dir.direction;
+  bottom = mid - std::max(nb, lb) * dir.direction;
+  return true;
+}
+
 } // namespace
 
 std::optional<EdgeFaces> edge_faces(const ShellEditor& e, int a, int b) {
@@ -62,6 +84,27 @@ std::optional<StarCandidate> collapse_candidate(const ShellEditor& e, int from, 
     t[corner_of(t, from)] = to;
     c.faces.push_back(t);
   }
+  return c;
+}
+
+std::optional<StarCandidate> collapse_reaimed_candidate(const ShellEditor& e, int from, int to, const SmoothParams& p) {
+  const Shell& s = e.shell();
+  if (s.singular[to]) return std::nullopt;
+  auto c = collapse_candidate(e, from, to);
+  if (!c) return std::nullopt;
+  for (int f : e.faces_of(to))
+    if (corner_of(s.faces[f], from) < 0) {
+      c->removed.push_back(f);
+      c->faces.push_back(s.faces[f]);
+    }
+  // `removed` stays sorted; `faces` need not follow its order.
+  std::sort(c->removed.begin(), c->removed.end());
+  Vec3 bottom, top;
+  if (!reaimed_pillar(s, c->faces, to, s.middle[to], p, bottom, top)) return std::nullopt;
+  c->moved = {to};
+  c->moved_bottom = {bottom};
+  c->moved_middle = {s.middle[to]};
+  c->moved_top = {top};
   return c;
 }
 
@@ -162,25 +205,8 @@ std::vector<StarCandidate> smooth_candidates(const ShellEditor& e, int v, const 
   }
   const bool pan = target != s.middle[v];
 
-  // Pillar: rotate to the extrusion direction of the star's middle faces
-  // (around the given middle position) and zoom toward the target length.
   auto pillar = [&](const Vec3& mid, Vec3& bottom, Vec3& top) {
-    std::vector<Vec3> normals;
-    for (int f : base.removed) {
-      const Tri& t = s.faces[f];
-      Vec3 q[3];
-      for (int k = 0; k < 3; ++k) q[k] = t[k] == v ? mid : s.middle[t[k]];
-      const Vec3 n = (q[1] - q[0]).cross(q[2] - q[0]);
-      if (!(n.norm() > 0)) return false;
-      normals.push_back(n.normalized());
-    }
-    const auto dir = extrusion_direction(normals, p.singular_dot);
-    if (dir.singular) return false;
-    const double lt = (s.top[v] - s.middle[v]).norm(), lb = (s.middle[v] - s.bottom[v]).norm();
-    const double nt = std::min(p.target_pillar, 1.5 * lt), nbm = std::min(p.target_pillar, 1.5 * lb);
-    top = mid + std::max(nt, lt) * dir.direction;
-    bottom = mid - std::max(nbm, lb) * dir.direction;
-    return true;
+    return reaimed_pillar(s, base.faces, v, mid, p, bottom, top);
   };
 
   auto add = [&](const Vec3& bottom, const Vec3& mid, const Vec3& top) {

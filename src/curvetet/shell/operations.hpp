@@ -26,6 +26,14 @@ std::optional<EdgeFaces> edge_faces(const ShellEditor& e, int a, int b);
 // vertices keep valence >= 3.
 std::optional<StarCandidate> collapse_candidate(const ShellEditor& e, int from, int to);
 
+// The same collapse with `to`'s pillar re-aimed to the extrusion direction of
+// its new star and grown toward target_pillar, as the pillar smoothing does
+// (SmoothParams below): the star then also holds `to`'s other faces,
+// unchanged. For where `to`'s old pillar leaves the new prisms inverted,
+// e.g. where the collapse cuts across a sharp corner.
+struct SmoothParams;
+std::optional<StarCandidate> collapse_reaimed_candidate(const ShellEditor& e, int from, int to, const SmoothParams& p);
+
 // Flip edge (a, b) of faces (a, b, c), (b, a, d) to (c, d): faces (a, d, c),
 // (d, b, c). Topology: c, d not adjacent, a and b keep valence >= 3.
 std::optional<StarCandidate> flip_candidate(const ShellEditor& e, int a, int b);

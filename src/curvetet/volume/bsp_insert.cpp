@@ -723,17 +723,8 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     return g;
   };
   auto collinear = [&](int a, int b, int c) {
-    if (cx.v.exact[a] && cx.v.exact[b] && cx.v.exact[c]) {
-      // Exact on doubles: not collinear iff some point a + δ·e_k (a double
-      // point) lies off the plane through them.
-      const Vec3& A = cx.v.d[a];
-      for (int k = 0; k < 3; ++k) {
-        Vec3 p = A;
-        p[k] = A[k] == 0 ? 1.0 : 2 * A[k];
-        if (geometry::orient3d(A, cx.v.d[b], cx.v.d[c], p) != 0) return false;
-      }
-      return true;
-    }
+    if (cx.v.exact[a] && cx.v.exact[b] && cx.v.exact[c])
+      return geometry::collinear(cx.v.d[a], cx.v.d[b], cx.v.d[c]);
     const auto& A = cx.v.q[a].c;
     const auto& B = cx.v.q[b].c;
     const auto& C = cx.v.q[c].c;
