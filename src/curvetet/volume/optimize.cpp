@@ -388,6 +388,36 @@ class Optimizer {
     return true;
   }
 
+  // Edge removal (4-4, 5-6, 6-8, 7-10 flips; 3-2 is flip_32): interior edge
+  // (a, b) with a closed ring of k tets is replaced by the fan of the ring
+  // polygon whose worst tet is best, when that is below the ring's worst.
+  // The only flip that changes tets whose four vertices are all frozen
+  // beyond 2-3 and 3-2.
+  bool remove_edge(int a, int b) {
+    const std::vector<int> ring = edge_ring(a, b);
+    const int k = static_cast<int>(ring.size());
+    if (k < 4 || k > 7) return false;
+    const auto c = ring_cycle(a, b, ring);
+    if (c.empty()) return false;
+    double best_max = 0;
+    for (int t : ring) best_max = std::max(best_max, tet_energy(t));
+    std::vector<Tet> best;
+    for (int i = 0; i < k; ++i) {
+      auto nt = fan_tets(a, b, c, i);
+      double m = 0;
+      for (const auto& t : nt) m = std::max(m, energy(t));
+      if (!nt.empty() && m < best_max) {
+        best_max = m;
+        best = std::move(nt);
+      }
+    }
+    if (best.empty()) return false;
+    for (int t : ring) kill(t);
+    for (const auto& t : best) add(t);
+    ++stats_.flips;
+    return true;
+  }
+
   // Edge removal then 3-2 flips (coarsening): interior edge (a, b) with a
   // closed ring c0..c(k-1) of k = 4..6 tets is replaced by 2(k-2) tets
   // (the ring polygon fanned from one c_i, joined to a and to b); that takes
@@ -830,6 +860,8 @@ void flip_pass(Optimizer& o, double threshold) {
     for (int i = 0; i < 4 && !done; ++i)
       for (int j = i + 1; j < 4 && !done; ++j) done = o.flip_32(q[i], q[j]);
     for (int k = 0; k < 4 && !done; ++k) done = o.flip_23(t, k);
+    for (int i = 0; i < 4 && !done; ++i)
+      for (int j = i + 1; j < 4 && !done; ++j) done = o.remove_edge(q[i], q[j]);
   }
 }
 
