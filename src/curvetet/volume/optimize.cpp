@@ -182,49 +182,7 @@ class Optimizer {
   }
   std::uint64_t clock() const { return clock_; }
 
- private:
-  bool descend(int v) {
-    if (m_.frozen[v] || pinned(v) || vt_[v].empty()) return false;
-    const Vec3 p0 = m_.v.d[v];
-    double e0 = 0, max0 = 0, len = 0;
-    Vec3 g = Vec3::Zero(); // gradient of the sum of squares
-    for (int t : vt_[v]) {
-      Vec3 gt;
-      const double e = energy_gradient_at(m_.tets[t], v, p0, gt);
-      if (!std::isfinite(e)) return false;
-      e0 += e * e; // squared: the worst tets dominate
-      max0 = std::max(max0, e);
-      g += 2 * e * gt;
-      for (int x : m_.tets[t]) len += (m_.v.d[x] - p0).norm();
-    }
-    len /= 3.0 * static_cast<double>(vt_[v].size());
-    if (!(len > 0)) return false;
-    auto sum_at = [&](const Vec3& p, double* mx) {
-      double s = 0, m = 0;
-      for (int t : vt_[v]) {
-        const double e = energy_at(m_.tets[t], v, p);
-        s += e * e;
-        m = std::max(m, e);
-      }
-      if (mx) *mx = m;
-      return s;
-    };
-    if (!g.allFinite() || g.norm() == 0) return false;
-    const Vec3 dir = -g.normalized();
-    for (double step = 0.25 * len; step > 1e-4 * len; step *= 0.5) {
-      const Vec3 p = p0 + step * dir;
-      double mx;
-      const double s = sum_at(p, &mx);
-      if (!(s < e0) || !(mx <= max0)) continue;
-      if (!star_positive_at(v, p)) continue;
-      move(v, p);
-      ++stats_.smooths;
-      return true;
-    }
-    return false;
-  }
 
- public:
   // --- worst-tet smoothing: lowers the maximum energy of v's star by a
   // compass search (the gradient of the worst tet first, then the axes);
   // every accepted position keeps the star positive (exact). ---
@@ -235,58 +193,7 @@ class Optimizer {
     return false;
   }
 
- private:
-  bool compass_search(int v) {
-    if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || vt_[v].empty()) return false;
-    Vec3 p = m_.v.d[v];
-    double len = 0;
-    for (int t : vt_[v])
-      for (int x : m_.tets[t]) len += (m_.v.d[x] - p).norm();
-    len /= 3.0 * static_cast<double>(vt_[v].size());
-    if (!(len > 0)) return false;
-    auto max_at = [&](const Vec3& q, int* worst) {
-      double m = 0;
-      for (int t : vt_[v]) {
-        const double e = energy_at(m_.tets[t], v, q);
-        if (e > m) {
-          m = e;
-          if (worst) *worst = t;
-        }
-      }
-      return m;
-    };
-    int worst = -1;
-    double best = max_at(p, &worst);
-    bool moved = false;
-    for (double step = 0.2 * len; step > 1e-3 * len;) {
-      // descent direction of the worst tet's energy
-      Vec3 g = Vec3::Zero();
-      energy_gradient_at(m_.tets[worst], v, p, g);
-      std::array<Vec3, 7> dirs = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(),
-                                  Vec3::UnitZ(), -Vec3::UnitZ(), Vec3::Zero()};
-      if (g.allFinite() && g.norm() > 0) dirs[6] = -g.normalized();
-      bool improved = false;
-      for (int i = 6; i >= 0 && !improved; --i) {
-        if (dirs[i].isZero()) continue;
-        const Vec3 q = p + step * dirs[i];
-        int w = -1;
-        const double e = max_at(q, &w);
-        if (!(e < best) || !star_positive_at(v, q)) continue;
-        p = q;
-        best = e;
-        worst = w;
-        improved = moved = true;
-      }
-      if (!improved) step *= 0.5;
-    }
-    if (moved) {
-      move(v, p);
-      ++stats_.smooths;
-    }
-    return moved;
-  }
 
- public:
   // Moves an unrounded vertex to some double position keeping its star
   // positive (towards the star's centroid).
   bool relocate(int v) {
@@ -623,6 +530,99 @@ class Optimizer {
   }
 
  private:
+  // The star's descent step of smooth().
+  bool descend(int v) {
+    if (m_.frozen[v] || pinned(v) || vt_[v].empty()) return false;
+    const Vec3 p0 = m_.v.d[v];
+    double e0 = 0, max0 = 0, len = 0;
+    Vec3 g = Vec3::Zero(); // gradient of the sum of squares
+    for (int t : vt_[v]) {
+      Vec3 gt;
+      const double e = energy_gradient_at(m_.tets[t], v, p0, gt);
+      if (!std::isfinite(e)) return false;
+      e0 += e * e; // squared: the worst tets dominate
+      max0 = std::max(max0, e);
+      g += 2 * e * gt;
+      for (int x : m_.tets[t]) len += (m_.v.d[x] - p0).norm();
+    }
+    len /= 3.0 * static_cast<double>(vt_[v].size());
+    if (!(len > 0)) return false;
+    auto sum_at = [&](const Vec3& p, double* mx) {
+      double s = 0, m = 0;
+      for (int t : vt_[v]) {
+        const double e = energy_at(m_.tets[t], v, p);
+        s += e * e;
+        m = std::max(m, e);
+      }
+      if (mx) *mx = m;
+      return s;
+    };
+    if (!g.allFinite() || g.norm() == 0) return false;
+    const Vec3 dir = -g.normalized();
+    for (double step = 0.25 * len; step > 1e-4 * len; step *= 0.5) {
+      const Vec3 p = p0 + step * dir;
+      double mx;
+      const double s = sum_at(p, &mx);
+      if (!(s < e0) || !(mx <= max0)) continue;
+      if (!star_positive_at(v, p)) continue;
+      move(v, p);
+      ++stats_.smooths;
+      return true;
+    }
+    return false;
+  }
+
+  // The compass search of smooth_max().
+  bool compass_search(int v) {
+    if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || vt_[v].empty()) return false;
+    Vec3 p = m_.v.d[v];
+    double len = 0;
+    for (int t : vt_[v])
+      for (int x : m_.tets[t]) len += (m_.v.d[x] - p).norm();
+    len /= 3.0 * static_cast<double>(vt_[v].size());
+    if (!(len > 0)) return false;
+    auto max_at = [&](const Vec3& q, int* worst) {
+      double m = 0;
+      for (int t : vt_[v]) {
+        const double e = energy_at(m_.tets[t], v, q);
+        if (e > m) {
+          m = e;
+          if (worst) *worst = t;
+        }
+      }
+      return m;
+    };
+    int worst = -1;
+    double best = max_at(p, &worst);
+    bool moved = false;
+    for (double step = 0.2 * len; step > 1e-3 * len;) {
+      // descent direction of the worst tet's energy
+      Vec3 g = Vec3::Zero();
+      energy_gradient_at(m_.tets[worst], v, p, g);
+      std::array<Vec3, 7> dirs = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(),
+                                  Vec3::UnitZ(), -Vec3::UnitZ(), Vec3::Zero()};
+      if (g.allFinite() && g.norm() > 0) dirs[6] = -g.normalized();
+      bool improved = false;
+      for (int i = 6; i >= 0 && !improved; --i) {
+        if (dirs[i].isZero()) continue;
+        const Vec3 q = p + step * dirs[i];
+        int w = -1;
+        const double e = max_at(q, &w);
+        if (!(e < best) || !star_positive_at(v, q)) continue;
+        p = q;
+        best = e;
+        worst = w;
+        improved = moved = true;
+      }
+      if (!improved) step *= 0.5;
+    }
+    if (moved) {
+      move(v, p);
+      ++stats_.smooths;
+    }
+    return moved;
+  }
+
   ExactTetMesh m_;
   FillStats& stats_;
   double coarsen_energy_;  // FillOptions::coarsen_energy
