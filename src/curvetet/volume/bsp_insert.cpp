@@ -97,6 +97,23 @@ int orient_in_plane(const Point& p, const Point& q, const Point& x, const Plane&
   return exact::orient_in_plane(p.h, q.h, x.h, pl.h.n);
 }
 
+// Whether p, q, x lie on one line: (q - p) x (x - p) == 0, on the double
+// approximations where they decide it, else on the homogeneous integers.
+bool collinear(const Point& p, const Point& q, const Point& x) {
+  const Vec3 u = q.d - p.d, w = x.d - p.d;
+  const Vec3 c = u.cross(w);
+  const double m = std::max({p.d.cwiseAbs().maxCoeff(), q.d.cwiseAbs().maxCoeff(), x.d.cwiseAbs().maxCoeff()});
+  const double a = u.cwiseAbs().maxCoeff(), b = w.cwiseAbs().maxCoeff();
+  const double bound = 1024 * kUnit * (m * (a + b) + a * b + m * m * 1e-300);
+  if (c.cwiseAbs().maxCoeff() > bound) return false;
+  mpz_class hu[3], hw[3];
+  for (int i = 0; i < 3; ++i) {
+    hu[i] = q.h.x[i] * p.h.w - p.h.x[i] * q.h.w;
+    hw[i] = x.h.x[i] * p.h.w - p.h.x[i] * x.h.w;
+  }
+  return hu[1] * hw[2] == hu[2] * hw[1] && hu[2] * hw[0] == hu[0] * hw[2] && hu[0] * hw[1] == hu[1] * hw[0];
+}
+
 std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
@@ -722,16 +739,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     for (int k = 0; k < 3; ++k) g.c[k] /= static_cast<long>(ids.size());
     return g;
   };
-  auto collinear = [&](int a, int b, int c) {
-    if (cx.v.exact[a] && cx.v.exact[b] && cx.v.exact[c])
-      return geometry::collinear(cx.v.d[a], cx.v.d[b], cx.v.d[c]);
-    const auto& A = cx.v.q[a].c;
-    const auto& B = cx.v.q[b].c;
-    const auto& C = cx.v.q[c].c;
-    const mpq_class u[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
-    const mpq_class w[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
-    return u[1] * w[2] == u[2] * w[1] && u[2] * w[0] == u[0] * w[2] && u[0] * w[1] == u[1] * w[0];
-  };
+  auto collinear = [&](int a, int b, int c) { return volume::exact::collinear(cx.points[a], cx.points[b], cx.points[c]); };
   // Face polygons are triangulated without new vertices, once: both cells
   // of a face use the same triangles. Convex loops may hold collinear
   // vertices (where neighbouring faces were split); a fan from loop[k] is
