@@ -219,11 +219,17 @@ class Optimizer {
   }
 
   // --- collapse v onto u ---
-  bool collapse(int v, int u, bool require_quality) {
+  // What a collapse must keep besides positivity: nothing (for unrounded
+  // vertices), quality (new worst <= old worst or the coarsening bound; no
+  // new tet on frozen vertices only above kFrozenTetLimit, as smoothing can
+  // never improve it; the sizing bound), or a strictly lower worst tet.
+  enum class Keep { positivity, quality, lower_max };
+  bool collapse(int v, int u, Keep keep) {
     if (m_.frozen[v] || pinned(v) || u == v) return false;
     double old_max = 0;
     for (int t : vt_[v]) old_max = std::max(old_max, tet_energy(t));
     const double bound = std::max(old_max, coarsen_energy_);
+    const bool require_quality = keep == Keep::quality;
     // The new tets: energy first (cheap), exact orientation last.
     std::vector<int> removed;
     for (int t : vt_[v]) {
@@ -244,6 +250,8 @@ class Optimizer {
           return false;
         for (int x : n)
           if (x != u && too_long(u, x) && !edge_exists(u, x)) return false;
+      } else if (keep == Keep::lower_max && !(energy(n) < old_max)) {
+        return false;
       }
       if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
     }
@@ -813,7 +821,7 @@ void collapse_pass(Optimizer& o, bool only_rational, std::vector<std::uint64_t>&
     std::sort(nb.begin(), nb.end(), [&](int a, int b) {
       return (m.v.d[a] - m.v.d[v]).squaredNorm() < (m.v.d[b] - m.v.d[v]).squaredNorm();
     });
-    if (std::none_of(nb.begin(), nb.end(), [&](int u) { return o.collapse(v, u, !rational); })) failed[v] = o.clock();
+    if (std::none_of(nb.begin(), nb.end(), [&](int u) { return o.collapse(v, u, rational ? Optimizer::Keep::positivity : Optimizer::Keep::quality); })) failed[v] = o.clock();
   }
 }
 
@@ -906,6 +914,19 @@ void worst_pass(Optimizer& o, int passes) {
     for (int t : bad)
       if (o.alive(t))
         for (int x : std::array<int, 4>(m.tets[t])) any |= o.smooth_max(x);
+    // Where smoothing is blocked (a free vertex hemmed in by its star, e.g.
+    // over a sliver input face), removing that vertex may not be.
+    for (int t : bad)
+      if (o.alive(t) && o.tet_energy(t) >= threshold)
+        for (int x : std::array<int, 4>(m.tets[t])) {
+          if (m.frozen[x] || !m.v.exact[x]) continue;
+          const auto nb = o.neighbours(x);
+          if (std::any_of(nb.begin(), nb.end(), [&](int u) { return o.collapse(x, u, Optimizer::Keep::lower_max); })) {
+            any = true;
+            break;
+          }
+        }
+    logger().debug("volume: worst pass {}: max {:.4g} over tets with a free vertex, {} tets above {:.4g}, changed: {}", pass, mx, bad.size(), threshold, any);
     if (!any) break;
   }
 }
