@@ -771,20 +771,18 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     }
     tris.push_back({l[0], l[1], l[2]});
   };
-  // Triangles of face f: as decided, else a fan from `apex` when it is a
-  // loop vertex and that fan has no flat triangle, else a fan from any
-  // corner, else ear clipping.
+  // A fan from `apex` (when a loop vertex and no fan triangle is flat).
+  auto fan_from = [&](const std::vector<int>& l, int apex, std::vector<std::array<int, 3>>& tris) {
+    const auto at = std::find(l.begin(), l.end(), apex);
+    return at != l.end() && fan(l, static_cast<std::size_t>(at - l.begin()), tris);
+  };
+  auto triangulate = [&](const std::vector<int>& l, std::vector<std::array<int, 3>>& tris) {
+    if (!fan(l, 0, tris)) ear_clip(l, tris);
+  };
+  // Triangles of face f: as decided, else fanned from `apex` where possible.
   auto decide_face = [&](int f, int apex) -> const std::vector<std::array<int, 3>>& {
     auto& tris = face_tris[f];
-    if (!tris.empty()) return tris;
-    const auto& l = cx.faces[f].loop;
-    if (l.size() == 3) {
-      tris.push_back({l[0], l[1], l[2]});
-      return tris;
-    }
-    const auto at = std::find(l.begin(), l.end(), apex);
-    if (at != l.end() && fan(l, static_cast<std::size_t>(at - l.begin()), tris)) return tris;
-    if (!fan(l, 0, tris)) ear_clip(l, tris);
+    if (tris.empty() && !fan_from(cx.faces[f].loop, apex, tris)) triangulate(cx.faces[f].loop, tris);
     return tris;
   };
   // Whether apex can cone the cell: every face on it is (or can be) fanned
@@ -795,17 +793,14 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     cone.clear();
     for (int f : cx.cells[c]) {
       const auto& l = cx.faces[f].loop;
-      const bool on = std::find(l.begin(), l.end(), apex) != l.end();
       const std::vector<std::array<int, 3>>* tris = &face_tris[f];
       if (tris->empty()) {
-        if (on && l.size() > 3) {
-          trial.clear();
-          if (!fan(l, static_cast<std::size_t>(std::find(l.begin(), l.end(), apex) - l.begin()), trial)) return false;
-        }
-        if (on) continue; // every triangle has the apex as a corner
         trial.clear();
-        if (l.size() == 3) trial.push_back({l[0], l[1], l[2]});
-        else if (!fan(l, 0, trial)) ear_clip(l, trial);
+        if (std::find(l.begin(), l.end(), apex) != l.end()) {
+          if (!fan_from(l, apex, trial)) return false;
+          continue; // every triangle has the apex as a corner
+        }
+        triangulate(l, trial);
         tris = &trial;
       }
       for (const auto& t : *tris) {
