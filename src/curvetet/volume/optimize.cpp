@@ -892,7 +892,10 @@ std::size_t flip_32_pass(Optimizer& o) {
 
 // Worst-tet passes: the free vertices of the tets whose energy is within a
 // factor of the current maximum over tets with a free vertex (those that
-// smoothing can change); stops when a pass no longer lowers that maximum.
+// smoothing can change); stops when a pass no longer lowers that maximum,
+// or once every tet is below kGoodMaxEnergy (more passes there only polish the
+// bulk: cad_fillet3 spent 2 s taking 3.2 to 2.8).
+constexpr double kGoodMaxEnergy = 3.5;
 void worst_pass(Optimizer& o, int passes) {
   auto& m = o.mesh();
   auto has_free_vertex = [&](int t) {
@@ -900,10 +903,13 @@ void worst_pass(Optimizer& o, int passes) {
   };
   double previous = std::numeric_limits<double>::infinity();
   for (int pass = 0; pass < passes; ++pass) {
-    double mx = 0;
+    double mx = 0, mx_all = 0;
     for (int t = 0; t < o.num_tets(); ++t)
-      if (o.alive(t) && has_free_vertex(t)) mx = std::max(mx, o.tet_energy(t));
-    if (!(mx < previous)) break;
+      if (o.alive(t)) {
+        mx_all = std::max(mx_all, o.tet_energy(t));
+        if (has_free_vertex(t)) mx = std::max(mx, o.tet_energy(t));
+      }
+    if (!(mx < previous) || mx_all < kGoodMaxEnergy) break;
     previous = mx;
     const double threshold = std::max(2.0, 0.5 * mx);
     std::vector<int> bad;
