@@ -639,6 +639,9 @@ class Optimizer {
   std::vector<std::pair<int, bool>> journal_; // (tet, added) of the open transaction
   std::vector<std::vector<int>> vt_;
   std::vector<char> alive_;
+  mutable std::array<std::vector<std::array<int, 3>>, 3> link_tris_;
+  mutable std::array<std::vector<std::array<int, 2>>, 4> link_edges_;
+  mutable std::array<std::vector<int>, 4> link_verts_;
   std::vector<double> energy_; // per tet; kStale until computed
   // Change stamps: touched_[x] = clock_ when x moved or a tet at x changed;
   // smooth_failed_[x], max_failed_[x] = clock_ at x's last failed smoothing.
@@ -749,8 +752,15 @@ class Optimizer {
   }
   // lk(u) ∩ lk(v) = lk(uv) (v interior, so no virtual boundary vertex).
   bool link_condition(int u, int v) const {
+    // Scratch buffers reused across calls (this runs for every collapse).
+    auto& [tu, tv, ct] = link_tris_;
+    auto& [eu, ev, euv, ce] = link_edges_;
+    auto& [pu, pv, puv, cp] = link_verts_;
     auto link = [&](int x, std::vector<std::array<int, 3>>& tris, std::vector<std::array<int, 2>>& edges,
                     std::vector<int>& verts) {
+      tris.clear();
+      edges.clear();
+      verts.clear();
       for (int t : vt_[x]) {
         std::array<int, 3> f;
         int j = 0;
@@ -769,14 +779,11 @@ class Optimizer {
       std::sort(verts.begin(), verts.end());
       verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
     };
-    std::vector<std::array<int, 3>> tu, tv;
-    std::vector<std::array<int, 2>> eu, ev;
-    std::vector<int> pu, pv;
     link(u, tu, eu, pu);
     link(v, tv, ev, pv);
     // lk(uv): opposite edges of the tets containing both.
-    std::vector<std::array<int, 2>> euv;
-    std::vector<int> puv;
+    euv.clear();
+    puv.clear();
     for (int t : vt_[v]) {
       const Tet& q = m_.tets[t];
       if (std::find(q.begin(), q.end(), u) == q.end()) continue;
@@ -792,14 +799,14 @@ class Optimizer {
     std::sort(euv.begin(), euv.end());
     std::sort(puv.begin(), puv.end());
     puv.erase(std::unique(puv.begin(), puv.end()), puv.end());
-    std::vector<std::array<int, 3>> ct;
+    ct.clear();
     std::set_intersection(tu.begin(), tu.end(), tv.begin(), tv.end(), std::back_inserter(ct));
     if (!ct.empty()) return false;
-    std::vector<std::array<int, 2>> ce;
+    ce.clear();
     std::set_intersection(eu.begin(), eu.end(), ev.begin(), ev.end(), std::back_inserter(ce));
     for (const auto& e : ce)
       if (!std::binary_search(euv.begin(), euv.end(), e)) return false;
-    std::vector<int> cp;
+    cp.clear();
     std::set_intersection(pu.begin(), pu.end(), pv.begin(), pv.end(), std::back_inserter(cp));
     for (int p : cp)
       if (!std::binary_search(puv.begin(), puv.end(), p)) return false;
