@@ -51,7 +51,8 @@ Command add_tetrahedralize_command(CLI::App& root) {
                                     {"rational_vertices", s.rational_vertices},
                                     {"unrounded_after_first_pass", s.unrounded_after_first_pass},
                                     {"collapses", s.collapses},             {"flips", s.flips},
-                                    {"smooths", s.smooths},                 {"seconds_insert", s.seconds_insert},
+                                    {"smooths", s.smooths},                 {"splits", s.splits},
+                                    {"seconds_insert", s.seconds_insert},
                                     {"seconds_layer", s.seconds_layer},     {"seconds_optimize", s.seconds_optimize},
                                     {"max_amips", s.max_amips},             {"mean_amips", s.mean_amips}};
             };

@@ -127,6 +127,17 @@ class Optimizer {
     }
     return tet_amips_gradient(*x[0], *x[1], *x[2], *x[3], corner, grad);
   }
+  // A new free vertex at double position p, in no tet yet.
+  int add_vertex(const Vec3& p) {
+    const int v = m_.v.add(p);
+    m_.frozen.push_back(0);
+    vt_.emplace_back();
+    pinned_.push_back(0);
+    touched_.push_back(++clock_);
+    smooth_failed_.push_back(0);
+    max_failed_.push_back(0);
+    return v;
+  }
   void move(int v, const Vec3& p) {
     m_.v.set(v, p);
     touched_[v] = ++clock_;
@@ -301,6 +312,74 @@ class Optimizer {
     add(t2);
     ++stats_.flips;
     return true;
+  }
+
+  // Edge split for the worst tets: interior edge (a, b) (closed ring) gets a
+  // new free vertex at its midpoint, which the compass search then places;
+  // kept only if the ring's worst tet got strictly better, else undone (the
+  // unused vertex stays starless and is dropped on extraction). A tet on a
+  // sliver input face gets a new apex this way where its own is hemmed in.
+  bool interior_edge(int a, int b) const {
+    const std::vector<int> ring = edge_ring(a, b);
+    return ring.size() >= 3 && !ring_cycle(a, b, ring).empty();
+  }
+  bool split_edge(int a, int b) {
+    if (!interior_edge(a, b)) return false;
+    const std::vector<int> ring = edge_ring(a, b);
+    double old_max = 0;
+    for (int t : ring) old_max = std::max(old_max, tet_energy(t));
+    const Vec3 p = 0.5 * (m_.v.d[a] + m_.v.d[b]);
+    std::vector<Tet> halves;
+    for (int t : ring)
+      for (int end : {a, b}) {
+        Tet h = m_.tets[t];
+        for (int& x : h)
+          if (x == end) x = -1; // the new vertex
+        halves.push_back(h);
+      }
+    // p may miss the segment by rounding: every half is checked exactly.
+    const int m = add_vertex(p);
+    for (Tet& h : halves) {
+      for (int& x : h)
+        if (x == -1) x = m;
+      if (m_.v.orient(h[0], h[1], h[2], h[3]) <= 0) return false; // m stays starless
+    }
+    return commit_split(m, ring, halves, old_max);
+  }
+
+  // The same with a new vertex inside tet t (1-4 split from its centroid),
+  // for worst tets whose edges all lie on the surface.
+  bool split_tet(int t) {
+    const Tet q = m_.tets[t];
+    const double old_max = tet_energy(t);
+    const int m = add_vertex(0.25 * (m_.v.d[q[0]] + m_.v.d[q[1]] + m_.v.d[q[2]] + m_.v.d[q[3]]));
+    std::array<Tet, 4> parts;
+    for (int k = 0; k < 4; ++k) {
+      parts[k] = q;
+      parts[k][k] = m;
+      if (m_.v.orient(parts[k][0], parts[k][1], parts[k][2], parts[k][3]) <= 0) return false; // m stays starless
+    }
+    return commit_split(m, {t}, {parts.begin(), parts.end()}, old_max);
+  }
+
+  // Replaces `old` by `parts` around the new vertex m, places m by the
+  // compass search, and keeps the change only if m's star ends strictly
+  // below old_max.
+  bool commit_split(int m, const std::vector<int>& old, const std::vector<Tet>& parts, double old_max) {
+    journal_.clear();
+    journaling_ = true;
+    for (int t : old) kill(t);
+    for (const Tet& h : parts) add(h);
+    journaling_ = false;
+    compass_search(m);
+    double new_max = 0;
+    for (int t : vt_[m]) new_max = std::max(new_max, tet_energy(t));
+    if (new_max < old_max) {
+      ++stats_.splits;
+      return true;
+    }
+    undo_journal();
+    return false;
   }
 
   // Edge removal (4-4, 5-6, 6-8, 7-10 flips; 3-2 is flip_32): interior edge
@@ -714,6 +793,7 @@ class Optimizer {
   }
   bool orient_positive(Tet& t) const { return m_.v.orient(t[0], t[1], t[2], t[3]) > 0; }
   void kill(int t) {
+    if (!alive_[t]) throw Error(ExitCode::internal, "volume: optimizer removed a tet twice");
     if (journaling_) journal_.emplace_back(t, false);
     alive_[t] = 0;
     ++clock_;
@@ -939,6 +1019,23 @@ void worst_pass(Optimizer& o, int passes) {
             break;
           }
         }
+    // The worst that are left (also those on frozen vertices only): a new
+    // vertex on one of their interior edges, else inside them.
+    const double split_above = std::max(threshold, 0.5 * mx_all);
+    for (int t : bad)
+      if (o.alive(t) && o.tet_energy(t) >= split_above) {
+        // (an undone edge split re-creates t under a new id: t is split
+        // itself only when it has no interior edge)
+        const auto q = m.tets[t];
+        bool done = false, interior = false;
+        for (int i = 0; i < 4 && !done; ++i)
+          for (int j = i + 1; j < 4 && !done; ++j)
+            if (o.interior_edge(q[i], q[j])) {
+              interior = true;
+              done = o.split_edge(q[i], q[j]);
+            }
+        any |= done || (!interior && o.split_tet(t));
+      }
     logger().debug("volume: worst pass {}: max {:.4g} over tets with a free vertex, {} tets above {:.4g}, changed: {}", pass, mx, bad.size(), threshold, any);
     if (!any) break;
   }
