@@ -977,13 +977,14 @@ std::size_t flip_32_pass(Optimizer& o) {
   return flips;
 }
 
-// Worst-tet passes: the free vertices of the tets whose energy is within a
-// factor of the current maximum over tets with a free vertex (those that
-// smoothing can change); stops when a pass no longer lowers that maximum,
-// or once every tet is below kGoodMaxEnergy (more passes there only polish the
-// bulk: cad_fillet3 spent 2 s taking 3.2 to 2.8).
+// Worst-tet passes: flips, then smoothing, removal and (with `splits`) edge
+// or tet splits around the tets whose energy is within a factor of the
+// current maximum over tets with a free vertex (those smoothing can change).
+// Stops when a pass no longer lowers that maximum, or once every tet is
+// below kGoodMaxEnergy (more passes there only polish the bulk: cad_fillet3
+// spent 2 s taking 3.2 to 2.8).
 constexpr double kGoodMaxEnergy = 3.5;
-void worst_pass(Optimizer& o, int passes) {
+void worst_pass(Optimizer& o, int passes, bool splits) {
   auto& m = o.mesh();
   auto has_free_vertex = [&](int t) {
     return std::any_of(m.tets[t].begin(), m.tets[t].end(), [&](int x) { return !m.frozen[x]; });
@@ -1023,7 +1024,7 @@ void worst_pass(Optimizer& o, int passes) {
     // vertex on one of their interior edges, else inside them.
     const double split_above = std::max(threshold, 0.5 * mx_all);
     for (int t : bad)
-      if (o.alive(t) && o.tet_energy(t) >= split_above) {
+      if (splits && o.alive(t) && o.tet_energy(t) >= split_above) {
         // (an undone edge split re-creates t under a new id: t is split
         // itself only when it has no interior edge)
         const auto q = m.tets[t];
@@ -1085,7 +1086,8 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
     phase("coarsen smooth");
     if (stats.collapses == collapses && flips == 0) break;
   }
-  if (options.optimize_rounds > 0) worst_pass(o, 8);
+  // A coarsening fill keeps its vertex count down: no splits there.
+  if (options.optimize_rounds > 0) worst_pass(o, 8, options.coarsen_energy <= 0);
   phase("worst");
   // Whatever is still rational: remove it or move it to a double position.
   for (int attempt = 0; attempt < 20 && left > 0; ++attempt) {
