@@ -216,7 +216,13 @@ def write_table(results, path):
     lines += ["", f"Success: curvetet {ok['curvetet']}/{n}, TetGen {ok['tetgen']}/{n}. "
               f"Where both succeed ({both}): curvetet's max AMIPS is lower on {wins}, "
               f"its time within 5x of TetGen's on {within5}.", ""]
-    open(path, "w").write("\n".join(lines))
+    # Hand-written notes below the table (from "## Notes" on) are kept.
+    notes = ""
+    if os.path.exists(path):
+        old = open(path).read()
+        if "\n## Notes" in old:
+            notes = old[old.index("\n## Notes"):]
+    open(path, "w").write("\n".join(lines) + notes)
 
 
 if __name__ == "__main__":
