@@ -11,8 +11,9 @@
 // Afterwards each cell face lying in a surface triangle is known; cells get a
 // winding number by crossing those faces (+1 when going against the
 // triangle's normal); the cells of the wanted region are tetrahedralized:
-// polygonal faces by a fan from their centroid (shared by both cells), cells
-// by a cone from their centroid (a cell that is a tet stays one tet).
+// polygonal faces by a fan from a vertex or ear clipping (once, shared by
+// both cells), cells by a cone from one of their vertices, or from a new
+// centroid where no vertex can cone them (a cell that is a tet stays one).
 // Exact predicates run on homogeneous integer points (homogeneous.hpp).
 #include "curvetet/volume/background.hpp"
 #include "curvetet/volume/exact_mesh.hpp"
