@@ -977,6 +977,48 @@ std::size_t flip_32_pass(Optimizer& o) {
   return flips;
 }
 
+// Where smoothing is blocked (a free vertex hemmed in by its star, e.g.
+// over a sliver input face), removing that vertex may not be: each tet of
+// `bad` still above `threshold` tries to collapse one of its free vertices
+// so that the vertex's star gets a strictly lower worst tet.
+bool remove_blocked_vertices(Optimizer& o, const std::vector<int>& bad, double threshold) {
+  auto& m = o.mesh();
+  bool any = false;
+  for (int t : bad)
+    if (o.alive(t) && o.tet_energy(t) >= threshold)
+      for (int x : std::array<int, 4>(m.tets[t])) {
+        if (m.frozen[x] || !m.v.exact[x]) continue;
+        const auto nb = o.neighbours(x);
+        if (std::any_of(nb.begin(), nb.end(), [&](int u) { return o.collapse(x, u, Optimizer::Keep::lower_max); })) {
+          any = true;
+          break;
+        }
+      }
+  return any;
+}
+
+// The worst tets that are left (also those on frozen vertices only) above
+// `above`: a new vertex on one of their interior edges, else inside them.
+bool split_worst(Optimizer& o, const std::vector<int>& bad, double above) {
+  auto& m = o.mesh();
+  bool any = false;
+  for (int t : bad)
+    if (o.alive(t) && o.tet_energy(t) >= above) {
+      // An undone edge split re-creates t under a new id: t is split itself
+      // only when it has no interior edge.
+      const auto q = m.tets[t];
+      bool done = false, interior = false;
+      for (int i = 0; i < 4 && !done; ++i)
+        for (int j = i + 1; j < 4 && !done; ++j)
+          if (o.interior_edge(q[i], q[j])) {
+            interior = true;
+            done = o.split_edge(q[i], q[j]);
+          }
+      any |= done || (!interior && o.split_tet(t));
+    }
+  return any;
+}
+
 // Worst-tet passes: flips, then smoothing, removal and (with `splits`) edge
 // or tet splits around the tets whose energy is within a factor of the
 // current maximum over tets with a free vertex (those smoothing can change).
@@ -1008,35 +1050,8 @@ void worst_pass(Optimizer& o, int passes, bool splits) {
     for (int t : bad)
       if (o.alive(t))
         for (int x : std::array<int, 4>(m.tets[t])) any |= o.smooth_max(x);
-    // Where smoothing is blocked (a free vertex hemmed in by its star, e.g.
-    // over a sliver input face), removing that vertex may not be.
-    for (int t : bad)
-      if (o.alive(t) && o.tet_energy(t) >= threshold)
-        for (int x : std::array<int, 4>(m.tets[t])) {
-          if (m.frozen[x] || !m.v.exact[x]) continue;
-          const auto nb = o.neighbours(x);
-          if (std::any_of(nb.begin(), nb.end(), [&](int u) { return o.collapse(x, u, Optimizer::Keep::lower_max); })) {
-            any = true;
-            break;
-          }
-        }
-    // The worst that are left (also those on frozen vertices only): a new
-    // vertex on one of their interior edges, else inside them.
-    const double split_above = std::max(threshold, 0.5 * mx_all);
-    for (int t : bad)
-      if (splits && o.alive(t) && o.tet_energy(t) >= split_above) {
-        // (an undone edge split re-creates t under a new id: t is split
-        // itself only when it has no interior edge)
-        const auto q = m.tets[t];
-        bool done = false, interior = false;
-        for (int i = 0; i < 4 && !done; ++i)
-          for (int j = i + 1; j < 4 && !done; ++j)
-            if (o.interior_edge(q[i], q[j])) {
-              interior = true;
-              done = o.split_edge(q[i], q[j]);
-            }
-        any |= done || (!interior && o.split_tet(t));
-      }
+    any |= remove_blocked_vertices(o, bad, threshold);
+    if (splits) any |= split_worst(o, bad, std::max(threshold, 0.5 * mx_all));
     logger().debug("volume: worst pass {}: max {:.4g} over tets with a free vertex, {} tets above {:.4g}, changed: {}", pass, mx, bad.size(), threshold, any);
     if (!any) break;
   }
