@@ -26,12 +26,18 @@ std::optional<EdgeFaces> edge_faces(const ShellEditor& e, int a, int b);
 // vertices keep valence >= 3.
 std::optional<StarCandidate> collapse_candidate(const ShellEditor& e, int from, int to);
 
+// Pillar re-aiming (the collapse below, vertex smoothing at the end): the
+// target pillar length and the singularity threshold of the direction.
+struct SmoothParams {
+  double target_pillar = 0; // absolute
+  double singular_dot = 1e-3;
+};
+
 // The same collapse with `to`'s pillar re-aimed to the extrusion direction of
-// its new star and grown toward target_pillar, as the pillar smoothing does
-// (SmoothParams below): the star then also holds `to`'s other faces,
-// unchanged. For where `to`'s old pillar leaves the new prisms inverted,
-// e.g. where the collapse cuts across a sharp corner.
-struct SmoothParams;
+// its new star and grown toward target_pillar, as the pillar smoothing does:
+// the star then also holds `to`'s other faces, unchanged. For where `to`'s
+// old pillar leaves the new prisms inverted, e.g. where the collapse cuts
+// across a sharp corner.
 std::optional<StarCandidate> collapse_reaimed_candidate(const ShellEditor& e, int from, int to, const SmoothParams& p);
 
 // Flip edge (a, b) of faces (a, b, c), (b, a, d) to (c, d): faces (a, d, c),
@@ -56,10 +62,6 @@ std::optional<StarCandidate> split_candidate(const ShellEditor& e, int a, int b)
 //   pillar:        "rotate" the pillar to the best extrusion direction of the
 //                  star's middle faces, "zoom" each side's length toward
 //                  target_pillar (at most x1.5 per step)
-struct SmoothParams {
-  double target_pillar = 0; // absolute
-  double singular_dot = 1e-3;
-};
 std::vector<StarCandidate> smooth_candidates(const ShellEditor& e, int v, const SmoothParams& p);
 
 } // namespace curvetet::shell
