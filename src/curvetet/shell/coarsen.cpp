@@ -70,9 +70,10 @@ class CollapseOp final : public Operation {
     std::vector<StarCandidate> out;
     for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}})
       if (auto c = collapse_candidate(e, from, to)) out.push_back(std::move(*c));
-    if (out.empty()) return out;
-    for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}})
-      if (auto c = collapse_reaimed_candidate(e, from, to, p_)) out.push_back(std::move(*c));
+    const std::size_t plain = out.size();
+    out.reserve(2 * plain); // out[i] is read while pushing
+    for (std::size_t i = 0; i < plain; ++i)
+      if (auto c = collapse_reaimed_candidate(e, out[i], p_)) out.push_back(std::move(*c));
     return out;
   }
 

@@ -87,24 +87,25 @@ std::optional<StarCandidate> collapse_candidate(const ShellEditor& e, int from, 
   return c;
 }
 
-std::optional<StarCandidate> collapse_reaimed_candidate(const ShellEditor& e, int from, int to, const SmoothParams& p) {
+std::optional<StarCandidate> collapse_reaimed_candidate(const ShellEditor& e, const StarCandidate& collapse,
+                                                        const SmoothParams& p) {
   const Shell& s = e.shell();
+  const int from = collapse.edge[0], to = collapse.edge[1];
   if (s.singular[to]) return std::nullopt;
-  auto c = collapse_candidate(e, from, to);
-  if (!c) return std::nullopt;
+  StarCandidate c = collapse;
   for (int f : e.faces_of(to))
     if (corner_of(s.faces[f], from) < 0) {
-      c->removed.push_back(f);
-      c->faces.push_back(s.faces[f]);
+      c.removed.push_back(f);
+      c.faces.push_back(s.faces[f]);
     }
   // `removed` stays sorted; `faces` need not follow its order.
-  std::sort(c->removed.begin(), c->removed.end());
+  std::sort(c.removed.begin(), c.removed.end());
   Vec3 bottom, top;
-  if (!reaimed_pillar(s, c->faces, to, s.middle[to], p, bottom, top)) return std::nullopt;
-  c->moved = {to};
-  c->moved_bottom = {bottom};
-  c->moved_middle = {s.middle[to]};
-  c->moved_top = {top};
+  if (!reaimed_pillar(s, c.faces, to, s.middle[to], p, bottom, top)) return std::nullopt;
+  c.moved = {to};
+  c.moved_bottom = {bottom};
+  c.moved_middle = {s.middle[to]};
+  c.moved_top = {top};
   return c;
 }
 

@@ -38,7 +38,9 @@ struct SmoothParams {
 // the star then also holds `to`'s other faces, unchanged. For where `to`'s
 // old pillar leaves the new prisms inverted, e.g. where the collapse cuts
 // across a sharp corner.
-std::optional<StarCandidate> collapse_reaimed_candidate(const ShellEditor& e, int from, int to, const SmoothParams& p);
+// `collapse`: a candidate of collapse_candidate.
+std::optional<StarCandidate> collapse_reaimed_candidate(const ShellEditor& e, const StarCandidate& collapse,
+                                                        const SmoothParams& p);
 
 // Flip edge (a, b) of faces (a, b, c), (b, a, d) to (c, d): faces (a, d, c),
 // (d, b, c). Topology: c, d not adjacent, a and b keep valence >= 3.

@@ -4,8 +4,6 @@
 #include "curvetet/core/log.hpp"
 #include "curvetet/volume/tet_amips.hpp"
 
-#include <Eigen/Dense>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -85,16 +83,7 @@ class Optimizer {
     }
     if (removed.empty()) return false;
     if (!link_condition(u, v) || !boundary_link_condition(u, v)) return false;
-    for (int t : removed) kill(t);
-    ++clock_;
-    for (int t : std::vector<int>(vt_[v])) {
-      for (int& x : m_.tets[t])
-        if (x == v) x = u;
-      vt_[u].push_back(t);
-      energy_[t] = kStale;
-      for (int x : m_.tets[t]) touched_[x] = clock_;
-    }
-    vt_[v].clear();
+    merge(v, u, removed);
     pinned_[v] = 0;
     ++stats_.collapses;
     return true;
@@ -193,7 +182,6 @@ class Optimizer {
   }
   std::uint64_t clock() const { return clock_; }
 
-
   // --- worst-tet smoothing: lowers the maximum energy of v's star by a
   // compass search (the gradient of the worst tet first, then the axes);
   // every accepted position keeps the star positive (exact). ---
@@ -203,7 +191,6 @@ class Optimizer {
     max_failed_[v] = clock_;
     return false;
   }
-
 
   // Moves an unrounded vertex to some double position keeping its star
   // positive (towards the star's centroid).
@@ -268,16 +255,7 @@ class Optimizer {
     }
     if (removed.empty()) return false; // not an edge
     if (!link_condition(u, v)) return false;
-    for (int t : removed) kill(t);
-    ++clock_;
-    for (int t : std::vector<int>(vt_[v])) {
-      for (int& x : m_.tets[t])
-        if (x == v) x = u;
-      vt_[u].push_back(t);
-      energy_[t] = kStale;
-      for (int x : m_.tets[t]) touched_[x] = clock_;
-    }
-    vt_[v].clear();
+    merge(v, u, removed);
     ++stats_.collapses;
     return true;
   }
@@ -319,13 +297,14 @@ class Optimizer {
   // kept only if the ring's worst tet got strictly better, else undone (the
   // unused vertex stays starless and is dropped on extraction). A tet on a
   // sliver input face gets a new apex this way where its own is hemmed in.
-  bool interior_edge(int a, int b) const {
-    const std::vector<int> ring = edge_ring(a, b);
-    return ring.size() >= 3 && !ring_cycle(a, b, ring).empty();
+  // The tets around edge (a, b) when it is interior (closed ring), else none.
+  std::vector<int> interior_ring(int a, int b) const {
+    std::vector<int> ring = edge_ring(a, b);
+    if (ring.size() < 3 || ring_cycle(a, b, ring).empty()) ring.clear();
+    return ring;
   }
-  bool split_edge(int a, int b) {
-    if (!interior_edge(a, b)) return false;
-    const std::vector<int> ring = edge_ring(a, b);
+  // `ring`: interior_ring(a, b), non-empty.
+  bool split_edge(int a, int b, const std::vector<int>& ring) {
     double old_max = 0;
     for (int t : ring) old_max = std::max(old_max, tet_energy(t));
     const Vec3 p = 0.5 * (m_.v.d[a] + m_.v.d[b]);
@@ -617,6 +596,21 @@ class Optimizer {
   }
 
  private:
+  // Commits the collapse of v onto u: the tets of edge (u, v) go, v's
+  // other tets take u instead.
+  void merge(int v, int u, const std::vector<int>& removed) {
+    for (int t : removed) kill(t);
+    ++clock_;
+    for (int t : std::vector<int>(vt_[v])) {
+      for (int& x : m_.tets[t])
+        if (x == v) x = u;
+      vt_[u].push_back(t);
+      energy_[t] = kStale;
+      for (int x : m_.tets[t]) touched_[x] = clock_;
+    }
+    vt_[v].clear();
+  }
+
   // The star's descent step of smooth().
   bool descend(int v) {
     if (m_.frozen[v] || pinned(v) || vt_[v].empty()) return false;
@@ -1010,9 +1004,9 @@ bool split_worst(Optimizer& o, const std::vector<int>& bad, double above) {
       bool done = false, interior = false;
       for (int i = 0; i < 4 && !done; ++i)
         for (int j = i + 1; j < 4 && !done; ++j)
-          if (o.interior_edge(q[i], q[j])) {
+          if (const auto ring = o.interior_ring(q[i], q[j]); !ring.empty()) {
             interior = true;
-            done = o.split_edge(q[i], q[j]);
+            done = o.split_edge(q[i], q[j], ring);
           }
       any |= done || (!interior && o.split_tet(t));
     }
