@@ -116,6 +116,19 @@ TEST(VolumeTetrahedralize, SpotStaysExactThroughWorstTetSplits) {
               r.interior.flips, r.interior.max_amips);
 }
 
+// abc_00000001 has needle input faces (0.07 x 0.0008) under a free vertex
+// 2e-5 deep and hemmed in by its star (max AMIPS 5e4 before relocation):
+// it must move through a cavity, and the result must stay exact.
+TEST(VolumeTetrahedralize, HemmedVertexRelocatesThroughACavity) {
+  const auto abc = mesh::to_surface_mesh(
+      io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/abc_00000001_forgescan.off"));
+  const auto r = expect_exact(abc);
+  EXPECT_GT(r.interior.relocations, 0u);
+  EXPECT_LT(r.interior.max_amips, 8.54e3); // TetGen -pYq's maximum on this model
+  std::printf("abc_00000001: %d tets, %zu relocations, max AMIPS %.4g\n", r.mesh.num_tets(), r.interior.relocations,
+              r.interior.max_amips);
+}
+
 TEST(VolumeTetrahedralize, InteriorAndExteriorShareTheSurface) {
   const auto m = test::octahedron();
   const auto r = expect_exact(m, true);

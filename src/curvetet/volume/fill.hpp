@@ -44,7 +44,7 @@ struct FillStats {
   std::size_t background_tets = 0, bsp_cuts = 0, bsp_cells = 0;
   std::size_t exact_tets = 0, exact_vertices = 0, rational_vertices = 0;
   std::size_t unrounded_after_first_pass = 0;
-  std::size_t collapses = 0, smooths = 0, flips = 0, splits = 0;
+  std::size_t collapses = 0, smooths = 0, flips = 0, splits = 0, relocations = 0;
   double seconds_insert = 0, seconds_layer = 0, seconds_optimize = 0;
   double max_amips = 0, mean_amips = 0;
 };

@@ -361,6 +361,154 @@ class Optimizer {
     return false;
   }
 
+  // --- relocation through a cavity: for a free vertex hemmed in by its star
+  // (e.g. a hair above a needle input face), where no smoothing step is
+  // positive. The cavity starts as v's star and takes in the tet across
+  // every face that `target` does not see strictly from inside; once the
+  // cavity's boundary is a sphere seen from `target`, v moves there and is
+  // joined to that boundary (a cone from a point seeing a sphere strictly
+  // is a triangulation of the ball it bounds: the surface is untouched).
+  // Kept only if the new tets' worst is strictly below the cavity's. ---
+  static constexpr std::size_t kMaxCavity = 400;
+  bool relocate_through_cavity(int v, const Vec3& target) {
+    if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || vt_[v].empty()) return false;
+    std::vector<int> cavity = vt_[v];
+    ++cavity_stamp_;
+    cavity_mark_.resize(m_.tets.size(), 0);
+    for (int t : cavity) cavity_mark_[t] = cavity_stamp_;
+    // Boundary faces as (tet, corner opposite): a new tet is that tet with v
+    // at target in place of the corner.
+    std::vector<std::pair<int, int>> faces;
+    for (bool grew = true; grew;) {
+      grew = false;
+      faces.clear();
+      for (std::size_t i = 0; i < cavity.size(); ++i) {
+        const Tet& q = m_.tets[cavity[i]];
+        const bool in_star = std::find(q.begin(), q.end(), v) != q.end();
+        for (int k = 0; k < 4; ++k) {
+          if (in_star && q[k] != v) continue; // faces through v are inside the star
+          const int n = across(cavity[i], k);
+          if (n >= 0 && cavity_mark_[n] == cavity_stamp_) continue;
+          Tet c = q;
+          c[k] = v;
+          if (m_.v.orient_at(c, v, target) > 0) {
+            faces.emplace_back(cavity[i], k);
+            continue;
+          }
+          if (n < 0 || cavity.size() >= kMaxCavity) return false; // an input face blocks the target
+          cavity_mark_[n] = cavity_stamp_;
+          cavity.push_back(n);
+          grew = true;
+        }
+      }
+    }
+    if (!bounds_sphere(faces)) return false;
+    double old_max = 0, new_max = 0;
+    for (int t : cavity) old_max = std::max(old_max, tet_energy(t));
+    std::vector<Tet> parts;
+    for (auto [t, k] : faces) {
+      Tet c = m_.tets[t];
+      c[k] = v;
+      new_max = std::max(new_max, energy_at(c, v, target));
+      parts.push_back(c);
+    }
+    if (!(new_max < old_max)) return false;
+    for (int t : cavity) kill(t);
+    move(v, target);
+    for (const Tet& c : parts) add(c);
+    compass_search(v); // only ever lowers the star's worst
+    ++stats_.relocations;
+    return true;
+  }
+  // Whether the oriented faces (tet, corner) form one closed sphere: every
+  // edge in two faces, every vertex's link one cycle, V - E + F = 2.
+  bool bounds_sphere(const std::vector<std::pair<int, int>>& faces) const {
+    std::vector<std::array<int, 3>> tris;
+    for (auto [t, k] : faces) {
+      std::array<int, 3> f;
+      for (int i = 0, j = 0; i < 4; ++i)
+        if (i != k) f[j++] = m_.tets[t][i];
+      if (k % 2 == 0) std::swap(f[0], f[1]); // (f, corner k) has q's parity: one orientation for all
+      tris.push_back(f);
+    }
+    std::vector<std::uint64_t> edges;
+    std::vector<int> verts;
+    for (const auto& f : tris)
+      for (int i = 0; i < 3; ++i) {
+        edges.push_back(key(f[i], f[(i + 1) % 3]));
+        verts.push_back(f[i]);
+      }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 0; i < edges.size(); i += 2)
+      if (i + 1 >= edges.size() || edges[i] != edges[i + 1] || (i + 2 < edges.size() && edges[i + 2] == edges[i]))
+        return false;
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    if (static_cast<long>(verts.size()) - static_cast<long>(edges.size() / 2) + static_cast<long>(tris.size()) != 2)
+      return false;
+    // Link of x: the edges opposite x in its faces; one cycle iff a walk
+    // from one link vertex visits them all (every link vertex has degree 2).
+    for (int x : verts) {
+      std::vector<std::array<int, 2>> link;
+      for (const auto& f : tris)
+        for (int i = 0; i < 3; ++i)
+          if (f[i] == x) link.push_back({f[(i + 1) % 3], f[(i + 2) % 3]});
+      std::size_t steps = 0;
+      for (int at = link[0][1]; at != link[0][0]; ++steps) {
+        const auto next = std::find_if(link.begin(), link.end(), [&](const auto& e) { return e[0] == at; });
+        if (next == link.end() || steps > link.size()) return false;
+        at = (*next)[1];
+      }
+      if (steps + 1 != link.size()) return false;
+    }
+    return true;
+  }
+  static std::uint64_t key(int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+  }
+  // The tet across the face of t opposite its corner k, or -1.
+  int across(int t, int k) const {
+    const Tet& q = m_.tets[t];
+    const int a = q[(k + 1) % 4], b = q[(k + 2) % 4], c = q[(k + 3) % 4];
+    for (int s : vt_[a]) {
+      if (s == t) continue;
+      const Tet& r = m_.tets[s];
+      if (std::find(r.begin(), r.end(), b) != r.end() && std::find(r.begin(), r.end(), c) != r.end()) return s;
+    }
+    return -1;
+  }
+  // Where v would best sit for tet t alone (a compass search on its energy,
+  // blind to the rest of the mesh): the target of a relocation.
+  Vec3 best_corner(int t, int v) const {
+    const Tet& q = m_.tets[t];
+    Vec3 p = m_.v.d[v];
+    double len = 0;
+    for (int x : q) len += (m_.v.d[x] - p).norm();
+    len /= 3;
+    double best = energy_at(q, v, p);
+    int iterations = 0;
+    for (double step = len; step > 1e-3 * len && iterations < 500; ++iterations) {
+      Vec3 g;
+      energy_gradient_at(q, v, p, g);
+      const std::array<Vec3, 7> dirs = {g.allFinite() && g.norm() > 0 ? Vec3(-g.normalized()) : Vec3(Vec3::UnitX()),
+                                        Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(),
+                                        Vec3::UnitZ(), -Vec3::UnitZ()};
+      bool improved = false;
+      for (const Vec3& d : dirs) {
+        const double e = energy_at(q, v, p + step * d);
+        if (e < best) {
+          best = e;
+          p += step * d;
+          improved = true;
+          break;
+        }
+      }
+      if (!improved) step *= 0.5;
+    }
+    return p;
+  }
+
   // Edge removal (4-4, 5-6, 6-8, 7-10 flips; 3-2 is flip_32): interior edge
   // (a, b) with a closed ring of k tets is replaced by the fan of the ring
   // polygon whose worst tet is best, when that is below the ring's worst.
@@ -721,6 +869,8 @@ class Optimizer {
   std::uint64_t clock_ = 1;
   std::vector<std::uint64_t> touched_, smooth_failed_, max_failed_;
   std::vector<char> pinned_;
+  std::vector<std::uint64_t> cavity_mark_; // per tet: == cavity_stamp_ while in the cavity
+  std::uint64_t cavity_stamp_ = 0;
 
   // Boundary faces (x, p, q) around x, as sorted (p, q): faces of one tet.
   std::vector<std::array<int, 2>> boundary_link(int x) const {
@@ -991,6 +1141,27 @@ bool remove_blocked_vertices(Optimizer& o, const std::vector<int>& bad, double t
   return any;
 }
 
+// Tets of `bad` still above `above`: a free corner moves to where the tet
+// alone would be best (or part of the way), through a cavity where its star
+// blocks the straight move.
+constexpr double kFractions[] = {1.0, 0.5, 0.25};
+bool relocate_worst(Optimizer& o, const std::vector<int>& bad, double above) {
+  auto& m = o.mesh();
+  bool any = false;
+  for (int t : bad)
+    if (o.alive(t) && o.tet_energy(t) >= above)
+      for (int x : std::array<int, 4>(m.tets[t])) {
+        if (m.frozen[x] || !m.v.exact[x]) continue;
+        const Vec3 p0 = m.v.d[x], target = o.best_corner(t, x);
+        if (std::any_of(std::begin(kFractions), std::end(kFractions),
+                        [&](double f) { return o.relocate_through_cavity(x, p0 + f * (target - p0)); })) {
+          any = true;
+          break;
+        }
+      }
+  return any;
+}
+
 // The worst tets that are left (also those on frozen vertices only) above
 // `above`: a new vertex on one of their interior edges, else inside them.
 bool split_worst(Optimizer& o, const std::vector<int>& bad, double above) {
@@ -1045,6 +1216,7 @@ void worst_pass(Optimizer& o, int passes, bool splits) {
       if (o.alive(t))
         for (int x : std::array<int, 4>(m.tets[t])) any |= o.smooth_max(x);
     any |= remove_blocked_vertices(o, bad, threshold);
+    any |= relocate_worst(o, bad, std::max(threshold, 0.5 * mx_all));
     if (splits) any |= split_worst(o, bad, std::max(threshold, 0.5 * mx_all));
     logger().debug("volume: worst pass {}: max {:.4g} over tets with a free vertex, {} tets above {:.4g}, changed: {}", pass, mx, bad.size(), threshold, any);
     if (!any) break;
