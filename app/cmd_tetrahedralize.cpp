@@ -46,7 +46,7 @@ Command add_tetrahedralize_command(CLI::App& root) {
               r = volume::tetrahedralize(in.mesh, o->tet);
             }
             auto stats_json = [](const volume::FillStats& s) {
-              return nlohmann::json{{"background_tets", s.background_tets}, {"bsp_cuts", s.bsp_cuts},
+              return nlohmann::json{{"direct", s.direct}, {"background_tets", s.background_tets}, {"bsp_cuts", s.bsp_cuts},
                                     {"bsp_cells", s.bsp_cells},             {"exact_tets", s.exact_tets},
                                     {"rational_vertices", s.rational_vertices},
                                     {"unrounded_after_first_pass", s.unrounded_after_first_pass},

@@ -23,9 +23,10 @@
 namespace curvetet {
 namespace {
 
-volume::TetrahedralizeResult expect_exact(const mesh::SurfaceMesh& s, bool exterior = false) {
+volume::TetrahedralizeResult expect_exact_by(const mesh::SurfaceMesh& s, bool exterior, bool direct) {
   volume::TetrahedralizeOptions o;
   o.exterior = exterior;
+  o.direct = direct;
   auto r = volume::tetrahedralize(s, o);
   for (int v = 0; v < s.num_vertices(); ++v)
     EXPECT_EQ(std::memcmp(r.mesh.vertices[v].data(), s.vertices[v].data(), 3 * sizeof(double)), 0) << v;
@@ -38,6 +39,12 @@ volume::TetrahedralizeResult expect_exact(const mesh::SurfaceMesh& s, bool exter
   const double vol = test::enclosed_volume(s);
   EXPECT_NEAR(check.volume, vol, 1e-9 * std::abs(vol));
   return r;
+}
+
+// Both fills: the Delaunay fast path where it applies, and the layered one.
+volume::TetrahedralizeResult expect_exact(const mesh::SurfaceMesh& s, bool exterior = false) {
+  expect_exact_by(s, exterior, false);
+  return expect_exact_by(s, exterior, true);
 }
 
 // Thin slab [0,1]^2 x [0,t]: the layer must be thinner than t/2.
@@ -88,7 +95,8 @@ TEST(VolumeTetrahedralize, ThinNeedle) { expect_exact(needle()); }
 // The origin of the folded star sees faces with normals +z and -z: no
 // pillar direction exists, the extrusion pins it (zero-length pillar).
 TEST(VolumeTetrahedralize, SingularFoldedStar) {
-  const auto r = expect_exact(shell::test::folded_star());
+  expect_exact_by(shell::test::folded_star(), false, true);
+  const auto r = expect_exact_by(shell::test::folded_star(), false, false); // the layered fill
   EXPECT_GE(r.singular_inward, 1); // the case this test is about
 }
 
@@ -109,11 +117,27 @@ TEST(VolumeTetrahedralize, NonConvexSphereWithDent) {
 TEST(VolumeTetrahedralize, SpotStaysExactThroughWorstTetSplits) {
   const auto spot = mesh::to_surface_mesh(io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/spot.off"));
   const auto r = expect_exact(spot);
+  EXPECT_FALSE(r.interior.direct); // 118 of its triangles are not Delaunay faces
   EXPECT_GT(r.interior.splits, 0u);
   EXPECT_GT(r.interior.flips, 0u);
   EXPECT_LT(r.interior.max_amips, 9.6);
   std::printf("spot: %d tets, %zu splits, %zu flips, max AMIPS %.3g\n", r.mesh.num_tets(), r.interior.splits,
               r.interior.flips, r.interior.max_amips);
+}
+
+// Every triangle of knot2 is a face of the Delaunay tetrahedralization of
+// its vertices: the fast path fills it with no layer and no BSP, then
+// inserts Steiner points inside until its worst tet beats TetGen's.
+TEST(VolumeTetrahedralize, DelaunayConformingSurfaceTakesTheDirectFill) {
+  const auto knot = mesh::to_surface_mesh(
+      io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/knot2_two_components.off"));
+  const auto r = expect_exact(knot);
+  EXPECT_TRUE(r.interior.direct);
+  EXPECT_EQ(r.interior.bsp_cuts, 0u);
+  EXPECT_GT(r.interior.splits, 0u);
+  EXPECT_LT(r.interior.max_amips, 4.96); // TetGen -pYq's maximum on this model
+  std::printf("knot2: %d tets, %zu insertions or splits, max AMIPS %.4g\n", r.mesh.num_tets(), r.interior.splits,
+              r.interior.max_amips);
 }
 
 // abc_00000001 has needle input faces (0.07 x 0.0008) under a free vertex

@@ -10,6 +10,7 @@
 #include <CGAL/intersections.h>
 
 #include <algorithm>
+#include <set>
 #include <unordered_map>
 
 namespace curvetet::volume {
@@ -45,6 +46,8 @@ bool may_meet(const std::vector<mesh::Vec3>& p, const std::array<int, 4>& t, con
   return !(pos == 4 || neg == 4);
 }
 
+} // namespace
+
 // neighbours[t][k] = tet across the face opposite corner k (-1: none).
 std::vector<std::array<int, 4>> face_neighbours(const std::vector<std::array<int, 4>>& tets) {
   std::unordered_map<std::uint64_t, std::pair<int, int>> open; // sorted face -> (tet, corner)
@@ -64,7 +67,34 @@ std::vector<std::array<int, 4>> face_neighbours(const std::vector<std::array<int
   return nb;
 }
 
-} // namespace
+Box padded_box(const std::vector<mesh::Vec3>& around, double margin) {
+  Eigen::Vector3d lo = around[0], hi = around[0];
+  for (const auto& p : around) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double pad = std::max(margin, 1e-3) * (hi - lo).norm();
+  lo.array() -= pad;
+  hi.array() += pad;
+  return {lo, hi};
+}
+
+void append_box_points(const Box& box, std::vector<mesh::Vec3>& pts) {
+  std::set<std::array<double, 3>> taken;
+  for (const auto& p : pts) taken.insert({p.x(), p.y(), p.z()});
+  const auto &lo = box.lo, &hi = box.hi;
+  for (int c = 0; c < 8; ++c) {
+    const mesh::Vec3 p(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
+    if (taken.insert({p.x(), p.y(), p.z()}).second) pts.push_back(p);
+  }
+  constexpr int kGrid = 8;
+  for (int i = 1; i < kGrid; ++i)
+    for (int j = 1; j < kGrid; ++j)
+      for (int k = 1; k < kGrid; ++k) {
+        const mesh::Vec3 p = lo + (hi - lo).cwiseProduct(mesh::Vec3(i, j, k) / kGrid);
+        if (taken.insert({p.x(), p.y(), p.z()}).second) pts.push_back(p);
+      }
+}
 
 BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points) {
   std::vector<std::pair<K::Point_3, int>> input;
@@ -94,7 +124,9 @@ BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points) {
 std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles) {
   const auto& p = bg.points;
   const int nt = static_cast<int>(bg.tets.size());
-  const auto neighbours = bg.neighbours.empty() ? face_neighbours(bg.tets) : bg.neighbours;
+  std::vector<std::array<int, 4>> computed;
+  if (bg.neighbours.empty()) computed = face_neighbours(bg.tets);
+  const auto& neighbours = bg.neighbours.empty() ? computed : bg.neighbours;
   // Tets around each point (CSR).
   std::vector<int> start(p.size() + 1, 0), star(4 * bg.tets.size());
   for (const auto& t : bg.tets)

@@ -3,6 +3,7 @@
 // tetrahedralization of the offset vertices plus the corners of a box, and
 // which offset triangles meet which tets (closed sets, exact).
 #include "curvetet/mesh/surface_mesh.hpp"
+#include "curvetet/volume/verify.hpp"
 
 #include <array>
 #include <vector>
@@ -16,6 +17,18 @@ struct BackgroundMesh {
   // hull (filled by delaunay(); computed on demand when empty).
   std::vector<std::array<int, 4>> neighbours;
 };
+
+// Outward fills: the bounding box of `around` grown on each side by
+// max(margin, 1e-3) × its diagonal.
+Box padded_box(const std::vector<mesh::Vec3>& around, double margin);
+// Appends the box's 8 corners and a coarse grid inside it (smaller
+// background tets meet fewer triangles), skipping points already in `pts`
+// (background points must be distinct).
+void append_box_points(const Box& box, std::vector<mesh::Vec3>& pts);
+
+// neighbours[t][k] = the tet across the face of tets[t] opposite corner k
+// (-1: none), found by hashing faces.
+std::vector<std::array<int, 4>> face_neighbours(const std::vector<std::array<int, 4>>& tets);
 
 // Delaunay tetrahedralization of `points` (CGAL, exact predicates). Points
 // must be pairwise distinct and not all coplanar; throws Error(internal)

@@ -139,30 +139,51 @@ class Complex {
 
   explicit Complex(const BackgroundMesh& bg) {
     for (const auto& p : bg.points) add_point(p);
-    std::unordered_map<std::uint64_t, int> face_of; // sorted triple -> face
-    auto tri_key = [](int a, int b, int c) {
-      int s[3] = {a, b, c};
-      std::sort(s, s + 3);
-      return (static_cast<std::uint64_t>(s[0]) << 42) | (static_cast<std::uint64_t>(s[1]) << 21) |
-             static_cast<std::uint64_t>(s[2]);
-    };
     const int nt = static_cast<int>(bg.tets.size());
+    std::vector<std::array<int, 4>> computed;
+    if (bg.neighbours.empty()) computed = face_neighbours(bg.tets);
+    const auto& neighbours = bg.neighbours.empty() ? computed : bg.neighbours;
     cells.resize(nt);
     tet_cells.resize(nt);
+    // A face is made by the first of its two tets; the second finds it
+    // through the neighbour relation (no hashing of 4 x #tets triples).
+    std::vector<std::array<int, 4>> face_id(nt, {-1, -1, -1, -1});
     for (int t = 0; t < nt; ++t) {
       const auto& q = bg.tets[t];
       tet_cells[t] = {t};
       for (int k = 0; k < 4; ++k) {
-        const int a = q[(k + 1) % 4], b = q[(k + 2) % 4], c = q[(k + 3) % 4];
-        auto [it, fresh] = face_of.try_emplace(tri_key(a, b, c), static_cast<int>(faces.size()));
-        if (fresh) {
+        const int n = neighbours[t][k];
+        int f = -1;
+        if (n >= 0 && n < t)
+          for (int j = 0; j < 4; ++j)
+            if (neighbours[n][j] == t) f = face_id[n][j];
+        if (f < 0) {
+          const int a = q[(k + 1) % 4], b = q[(k + 2) % 4], c = q[(k + 3) % 4];
+          f = static_cast<int>(faces.size());
           faces.push_back(Face{{a, b, c}, {t, -1}, -1, nullptr, {a, b, c}});
-          add_edges(it->second);
         } else {
-          faces[it->second].cell[1] = t;
+          faces[f].cell[1] = t;
         }
-        cells[t].push_back(it->second);
+        face_id[t][k] = f;
+        cells[t].push_back(f);
       }
+    }
+    // Edge -> faces, built in bulk (sorted pairs) rather than by growing
+    // one vector per edge in the map.
+    std::vector<std::pair<std::uint64_t, int>> pairs;
+    pairs.reserve(3 * faces.size());
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
+      const auto& l = faces[f].loop;
+      for (int k = 0; k < 3; ++k) pairs.emplace_back(edge_key(l[k], l[(k + 1) % 3]), f);
+    }
+    std::sort(pairs.begin(), pairs.end());
+    edge_faces_.reserve(pairs.size() / 4);
+    for (std::size_t i = 0; i < pairs.size();) {
+      std::size_t j = i;
+      while (j < pairs.size() && pairs[j].first == pairs[i].first) ++j;
+      auto& list = edge_faces_[pairs[i].first];
+      list.reserve(j - i);
+      for (; i < j; ++i) list.push_back(pairs[i].second);
     }
   }
 
@@ -496,7 +517,14 @@ class Complex {
 } // namespace
 
 InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles, int keep_winding) {
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&](const char* what) {
+    const auto now = std::chrono::steady_clock::now();
+    logger().debug("volume: BSP {} in {:.3f} s", what, std::chrono::duration<double>(now - clock).count());
+    clock = now;
+  };
   Complex cx(bg);
+  lap("complex");
   const int nt = static_cast<int>(triangles.size());
   const auto& P = bg.points;
 
@@ -544,12 +572,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     }
   }
 
-  auto clock = std::chrono::steady_clock::now();
-  auto lap = [&](const char* what) {
-    const auto now = std::chrono::steady_clock::now();
-    logger().debug("volume: BSP {} in {:.3f} s", what, std::chrono::duration<double>(now - clock).count());
-    clock = now;
-  };
+  lap("triangle planes");
   // Cut every tet's cells by the planes of the triangles meeting them. A cell
   // whose (slightly grown) box misses the triangle's box cannot meet the
   // triangle and is skipped; cutting more cells than needed is harmless.

@@ -60,37 +60,15 @@ mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& opt
   // Background: offset vertices (id v = offset of v) + box corners.
   BackgroundMesh bg;
   std::vector<mesh::Vec3> pts = s.offset;
-  Eigen::Vector3d lo = pts[0], hi = pts[0];
-  for (const auto& p : pts) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  for (const auto& p : s.surface.vertices) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const double margin = std::max(options.box_margin, 1e-3) * (hi - lo).norm();
-  lo.array() -= margin;
-  hi.array() += margin;
+  std::vector<mesh::Vec3> around = s.offset;
+  around.insert(around.end(), s.surface.vertices.begin(), s.surface.vertices.end());
+  const Box box = padded_box(around, options.box_margin);
+  const Eigen::Vector3d lo = box.lo, hi = box.hi;
   // The inside needs no box: the offset surface lies in its vertices' hull.
   const bool inward = s.side == OffsetSide::inward;
-  if (!inward) {
-    for (int c = 0; c < 8; ++c)
-      pts.emplace_back(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
-    // A coarse grid inside the box keeps the background tets small, so each
-    // meets few triangles (fewer cuts). Points equal to an offset vertex are
-    // skipped (the background points must be distinct).
-    std::set<std::array<double, 3>> taken;
-    for (const auto& p : s.offset) taken.insert({p.x(), p.y(), p.z()});
-    constexpr int kGrid = 8;
-    for (int i = 1; i < kGrid; ++i)
-      for (int j = 1; j < kGrid; ++j)
-        for (int k = 1; k < kGrid; ++k) {
-          const mesh::Vec3 p = lo + (hi - lo).cwiseProduct(mesh::Vec3(i, j, k) / kGrid);
-          if (taken.insert({p.x(), p.y(), p.z()}).second) pts.push_back(p);
-        }
-  }
+  if (!inward) append_box_points(box, pts);
   bg = delaunay(pts);
+  logger().debug("volume: background Delaunay of {} points in {:.3f} s", pts.size(), seconds_since(t0));
   stats.background_tets = bg.tets.size();
 
   auto ins = exact::insert_surface(bg, faces, inward ? 1 : 0);

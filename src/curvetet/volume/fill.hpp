@@ -47,6 +47,7 @@ struct FillStats {
   std::size_t collapses = 0, smooths = 0, flips = 0, splits = 0, relocations = 0;
   double seconds_insert = 0, seconds_layer = 0, seconds_optimize = 0;
   double max_amips = 0, mean_amips = 0;
+  bool direct = false; // filled by fill_direct() (no layer, no BSP)
 };
 
 mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& options = {}, FillStats* stats = nullptr);

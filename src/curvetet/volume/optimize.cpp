@@ -2,6 +2,7 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
+#include "curvetet/geometry/predicates.hpp"
 #include "curvetet/volume/tet_amips.hpp"
 
 #include <algorithm>
@@ -372,7 +373,83 @@ class Optimizer {
   static constexpr std::size_t kMaxCavity = 400;
   bool relocate_through_cavity(int v, const Vec3& target) {
     if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || vt_[v].empty()) return false;
-    std::vector<int> cavity = vt_[v];
+    if (!restar(v, target, vt_[v])) return false;
+    ++stats_.relocations;
+    return true;
+  }
+
+  // Inserts a new free vertex at p (a double point) inside the mesh, as in
+  // Delaunay refinement: the cavity is the tets whose circumsphere holds p,
+  // face-connected to the tet holding it (walked to from tet `from`), made
+  // star-shaped as above. Kept only if the cavity's worst tet gets strictly
+  // better.
+  bool insert_vertex(int from, const Vec3& p) {
+    const int holder = locate(from, p);
+    if (holder < 0) return false;
+    std::vector<int> cavity{holder};
+    ++cavity_stamp_;
+    cavity_mark_.resize(m_.tets.size(), 0);
+    cavity_mark_[holder] = cavity_stamp_;
+    for (std::size_t i = 0; i < cavity.size() && cavity.size() < kMaxCavity / 4; ++i)
+      for (int k = 0; k < 4; ++k) {
+        const int n = across(cavity[i], k);
+        if (n < 0 || cavity_mark_[n] == cavity_stamp_ || !in_circumsphere(n, p)) continue;
+        cavity_mark_[n] = cavity_stamp_;
+        cavity.push_back(n);
+      }
+    const int m = add_vertex(p);
+    if (!restar(m, p, cavity)) return false; // m stays starless (dropped on extraction)
+    ++stats_.splits;
+    return true;
+  }
+
+  // The tet holding p (closed), walking from `from` toward p; -1 when the
+  // walk leaves the mesh (p is outside) or takes too long.
+  int locate(int from, const Vec3& p) const {
+    int t = from;
+    for (int steps = 0; steps < 1000; ++steps) {
+      const Tet& q = m_.tets[t];
+      int exit = -1;
+      for (int k = 0; k < 4 && exit < 0; ++k) {
+        Tet c = q;
+        c[k] = -1;
+        if (orient_with(c, p) < 0) exit = k;
+      }
+      if (exit < 0) return t;
+      t = across(t, exit);
+      if (t < 0) return -1;
+    }
+    return -1;
+  }
+  // orient3d of tet c whose corner -1 is the double point p.
+  int orient_with(const Tet& c, const Vec3& p) const {
+    Vec3 x[4];
+    for (int k = 0; k < 4; ++k) x[k] = c[k] < 0 ? p : m_.v.d[c[k]];
+    return geometry::orient3d(x[0], x[1], x[2], x[3]);
+  }
+  // Whether p is strictly inside tet t's circumsphere (doubles: it only
+  // chooses the cavity; its validity is decided exactly by restar()).
+  bool in_circumsphere(int t, const Vec3& p) const {
+    const Tet& q = m_.tets[t];
+    const Vec3 a = m_.v.d[q[0]];
+    const Vec3 b = m_.v.d[q[1]] - a, c = m_.v.d[q[2]] - a, d = m_.v.d[q[3]] - a;
+    const double det = b.dot(c.cross(d));
+    if (!(det > 0)) return false;
+    const Vec3 centre = (b.squaredNorm() * c.cross(d) + c.squaredNorm() * d.cross(b) + d.squaredNorm() * b.cross(c)) /
+                        (2 * det);
+    return (p - a - centre).squaredNorm() < centre.squaredNorm();
+  }
+
+  // Replaces `seed` (tets, marked or not) by the cone from v at target over
+  // the boundary of a cavity grown from it: the cavity takes in the tet
+  // across every boundary face that target does not see strictly from
+  // inside; once its boundary is a sphere seen from target, v moves there
+  // and is joined to that boundary (a cone from a point seeing a sphere
+  // strictly triangulates the ball it bounds; the surface is untouched).
+  // Faces through v are inside its star. Kept only if the new tets' worst is
+  // strictly below the cavity's; then the compass search polishes v.
+  bool restar(int v, const Vec3& target, const std::vector<int>& seed) {
+    std::vector<int> cavity = seed;
     ++cavity_stamp_;
     cavity_mark_.resize(m_.tets.size(), 0);
     for (int t : cavity) cavity_mark_[t] = cavity_stamp_;
@@ -386,7 +463,7 @@ class Optimizer {
         const Tet& q = m_.tets[cavity[i]];
         const bool in_star = std::find(q.begin(), q.end(), v) != q.end();
         for (int k = 0; k < 4; ++k) {
-          if (in_star && q[k] != v) continue; // faces through v are inside the star
+          if (in_star && q[k] != v) continue;
           const int n = across(cavity[i], k);
           if (n >= 0 && cavity_mark_[n] == cavity_stamp_) continue;
           Tet c = q;
@@ -417,7 +494,6 @@ class Optimizer {
     move(v, target);
     for (const Tet& c : parts) add(c);
     compass_search(v); // only ever lowers the star's worst
-    ++stats_.relocations;
     return true;
   }
   // Whether the oriented faces (tet, corner) form one closed sphere: every
@@ -1088,9 +1164,11 @@ std::size_t surface_steiner_pass(Optimizer& o) {
   return left;
 }
 
-void flip_pass(Optimizer& o, double threshold) {
+// Flips on every tet at or above threshold; returns how many were made.
+std::size_t flip_pass(Optimizer& o, double threshold) {
   auto& m = o.mesh();
   const int nt = o.num_tets();
+  std::size_t flips = 0;
   for (int t = 0; t < nt; ++t) {
     if (!o.alive(t)) continue;
     if (o.tet_energy(t) < threshold) continue;
@@ -1101,7 +1179,9 @@ void flip_pass(Optimizer& o, double threshold) {
     for (int k = 0; k < 4 && !done; ++k) done = o.flip_23(t, k);
     for (int i = 0; i < 4 && !done; ++i)
       for (int j = i + 1; j < 4 && !done; ++j) done = o.remove_edge(q[i], q[j]);
+    flips += done;
   }
+  return flips;
 }
 
 // 3-2 flips (alone or after an edge removal) wherever they keep the energy
@@ -1162,6 +1242,25 @@ bool relocate_worst(Optimizer& o, const std::vector<int>& bad, double above) {
   return any;
 }
 
+// Tets of `bad` still above `above`: a new vertex at the circumcentre (or,
+// when that is outside the mesh or not better, the centroid), Delaunay
+// refinement style.
+bool insert_worst(Optimizer& o, const std::vector<int>& bad, double above) {
+  auto& m = o.mesh();
+  bool any = false;
+  for (int t : bad)
+    if (o.alive(t) && o.tet_energy(t) >= above) {
+      const auto& q = m.tets[t];
+      const Vec3 a = m.v.d[q[0]], b = m.v.d[q[1]] - a, c = m.v.d[q[2]] - a, d = m.v.d[q[3]] - a;
+      const Vec3 centre =
+          a + (b.squaredNorm() * c.cross(d) + c.squaredNorm() * d.cross(b) + d.squaredNorm() * b.cross(c)) /
+                  (2 * b.dot(c.cross(d)));
+      const Vec3 centroid = a + 0.25 * (b + c + d);
+      any |= (centre.allFinite() && o.insert_vertex(t, centre)) || (o.alive(t) && o.insert_vertex(t, centroid));
+    }
+  return any;
+}
+
 // The worst tets that are left (also those on frozen vertices only) above
 // `above`: a new vertex on one of their interior edges, else inside them.
 bool split_worst(Optimizer& o, const std::vector<int>& bad, double above) {
@@ -1184,40 +1283,50 @@ bool split_worst(Optimizer& o, const std::vector<int>& bad, double above) {
   return any;
 }
 
-// Worst-tet passes: flips, then smoothing, removal and (with `splits`) edge
-// or tet splits around the tets whose energy is within a factor of the
-// current maximum over tets with a free vertex (those smoothing can change).
-// Stops when a pass no longer lowers that maximum, or once every tet is
-// below kGoodMaxEnergy (more passes there only polish the bulk: cad_fillet3
-// spent 2 s taking 3.2 to 2.8).
+// Worst-tet passes: flips, then smoothing, removal, relocation and (with
+// `splits`) new vertices around the tets whose energy is within `focus` of
+// the current maximum over tets with a free vertex (those smoothing can
+// change; over all tets while none has one). Stops when a pass lowers
+// neither that maximum nor the overall one, or once every tet is below
+// kGoodMaxEnergy (more passes there only polish the bulk: cad_fillet3 spent
+// 2 s taking 3.2 to 2.8).
 constexpr double kGoodMaxEnergy = 3.5;
-void worst_pass(Optimizer& o, int passes, bool splits) {
+struct WorstPassPlan {
+  int passes = 8;
+  double focus = 0.5;
+  bool splits = true;  // edge or tet splits
+  bool insert = false; // Delaunay-style insertions before the splits
+};
+void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
   auto& m = o.mesh();
   auto has_free_vertex = [&](int t) {
     return std::any_of(m.tets[t].begin(), m.tets[t].end(), [&](int x) { return !m.frozen[x]; });
   };
-  double previous = std::numeric_limits<double>::infinity();
-  for (int pass = 0; pass < passes; ++pass) {
+  double previous = std::numeric_limits<double>::infinity(), previous_all = previous;
+  for (int pass = 0; pass < plan.passes; ++pass) {
     double mx = 0, mx_all = 0;
     for (int t = 0; t < o.num_tets(); ++t)
       if (o.alive(t)) {
         mx_all = std::max(mx_all, o.tet_energy(t));
         if (has_free_vertex(t)) mx = std::max(mx, o.tet_energy(t));
       }
-    if (!(mx < previous) || mx_all < kGoodMaxEnergy) break;
+    if (!(mx < previous) && !(mx_all < previous_all)) break;
+    if (mx_all < kGoodMaxEnergy) break;
     previous = mx;
-    const double threshold = std::max(2.0, 0.5 * mx);
+    previous_all = mx_all;
+    const double threshold = std::max(2.0, plan.focus * (mx > 0 ? mx : mx_all));
     std::vector<int> bad;
     for (int t = 0; t < o.num_tets(); ++t)
       if (o.alive(t) && o.tet_energy(t) >= threshold) bad.push_back(t);
-    flip_pass(o, threshold);
-    bool any = false;
+    bool any = flip_pass(o, threshold) > 0;
     for (int t : bad)
       if (o.alive(t))
         for (int x : std::array<int, 4>(m.tets[t])) any |= o.smooth_max(x);
     any |= remove_blocked_vertices(o, bad, threshold);
-    any |= relocate_worst(o, bad, std::max(threshold, 0.5 * mx_all));
-    if (splits) any |= split_worst(o, bad, std::max(threshold, 0.5 * mx_all));
+    const double above = std::max(threshold, plan.focus * mx_all);
+    any |= relocate_worst(o, bad, above);
+    if (plan.splits && plan.insert) any |= insert_worst(o, bad, above);
+    if (plan.splits) any |= split_worst(o, bad, above);
     logger().debug("volume: worst pass {}: max {:.4g} over tets with a free vertex, {} tets above {:.4g}, changed: {}", pass, mx, bad.size(), threshold, any);
     if (!any) break;
   }
@@ -1244,7 +1353,12 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
   std::size_t left = o.round_pass();
   stats.unrounded_after_first_pass = left;
   phase("round");
-  for (int round = 0; round < options.optimize_rounds; ++round) {
+  // Without a free vertex (the Delaunay fill), collapses and smoothing have
+  // nothing to move: one round of flips, then the worst-tet passes insert.
+  const auto& fr = o.mesh().frozen;
+  const bool all_frozen = std::find(fr.begin(), fr.end(), 0) == fr.end();
+  const int rounds = all_frozen ? std::min(options.optimize_rounds, 1) : options.optimize_rounds;
+  for (int round = 0; round < rounds; ++round) {
     collapse_pass(o, false, collapse_failed);
     phase("collapse");
     flip_pass(o, 3.0);
@@ -1267,8 +1381,18 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
     phase("coarsen smooth");
     if (stats.collapses == collapses && flips == 0) break;
   }
-  // A coarsening fill keeps its vertex count down: no splits there.
-  if (options.optimize_rounds > 0) worst_pass(o, 8, options.coarsen_energy <= 0);
+  // A coarsening fill keeps its vertex count down: no splits there. A fill
+  // that started without a free vertex (the Delaunay fill: a bulk of flat
+  // tets between surface vertices) needs Steiner points, as in Delaunay
+  // refinement: more passes, each on the tets near the current worst.
+  WorstPassPlan plan;
+  plan.splits = options.coarsen_energy <= 0;
+  if (all_frozen) {
+    plan.passes = 30;
+    plan.focus = 0.75;
+    plan.insert = true;
+  }
+  if (options.optimize_rounds > 0) worst_pass(o, plan);
   phase("worst");
   // Whatever is still rational: remove it or move it to a double position.
   for (int attempt = 0; attempt < 20 && left > 0; ++attempt) {

@@ -3,6 +3,7 @@
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
 #include "curvetet/shell/extrusion.hpp"
+#include "curvetet/volume/direct_fill.hpp"
 
 #include <chrono>
 
@@ -39,18 +40,21 @@ void require_ok(const TetMeshCheck& c, const char* part) {
 TetrahedralizeResult tetrahedralize(const mesh::SurfaceMesh& surface, const TetrahedralizeOptions& options) {
   TetrahedralizeResult r;
   const int n = surface.num_vertices();
-  auto t0 = std::chrono::steady_clock::now();
-  auto inner = extrude(surface, OffsetSide::inward, options.layer_thickness, &r.singular_inward);
-  r.seconds_extrusion = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.mesh = fill_layered(inner, options.fill, &r.interior);
+  // The fast path first; the layer and the BSP where it does not apply.
+  auto fill = [&](OffsetSide side, FillStats* stats, int* singular) {
+    if (options.direct)
+      if (auto m = fill_direct(surface, side, options.fill, stats)) return std::move(*m);
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto layered = extrude(surface, side, options.layer_thickness, singular);
+    r.seconds_extrusion += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return fill_layered(layered, options.fill, stats);
+  };
+  r.mesh = fill(OffsetSide::inward, &r.interior, &r.singular_inward);
   r.interior_check = verify_tet_mesh(r.mesh, surface.faces);
   require_ok(r.interior_check, "interior");
   if (!options.exterior) return r;
 
-  t0 = std::chrono::steady_clock::now();
-  auto outer = extrude(surface, OffsetSide::outward, options.layer_thickness, &r.singular_outward);
-  r.seconds_extrusion += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  auto ext = fill_layered(outer, options.fill, &r.exterior);
+  auto ext = fill(OffsetSide::outward, &r.exterior, &r.singular_outward);
   std::vector<mesh::Tri> reversed;
   reversed.reserve(surface.faces.size());
   for (const auto& f : surface.faces) reversed.push_back({f[0], f[2], f[1]});

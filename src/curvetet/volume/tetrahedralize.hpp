@@ -1,7 +1,9 @@
 #pragma once
 // `curvetet tetrahedralize`: boundary-preserving tetrahedralization of a
-// closed surface (issue 6). The layer offsets come from the shell's one-sided
-// extrusion (shell::extrude_one_sided), the fill from fill_layered().
+// closed surface (issue 6). Each side is filled by fill_direct() when the
+// Delaunay tetrahedralization of the surface's vertices has every surface
+// triangle, else by fill_layered() on the offset of the shell's one-sided
+// extrusion (shell::extrude_one_sided).
 //
 // Output: vertices [0, n) are the surface's vertices bit for bit; tag 1 = the
 // interior (bounded exactly by the surface faces), tag 2 = with `exterior`,
@@ -17,6 +19,7 @@ namespace curvetet::volume {
 
 struct TetrahedralizeOptions {
   bool exterior = false;
+  bool direct = true;             // try fill_direct() before the layered fill
   double layer_thickness = 0.01; // target pillar length, × bbox diagonal
   FillOptions fill;              // fill.box_margin: box margin, × diagonal
 };
