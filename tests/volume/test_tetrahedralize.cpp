@@ -140,6 +140,18 @@ TEST(VolumeTetrahedralize, DelaunayConformingSurfaceTakesTheDirectFill) {
               r.interior.max_amips);
 }
 
+// Two triangles of cad_fillet3 are not Delaunay faces (co-circular points
+// on a flat face): edge removals recover them, and the fast path applies;
+// the flat tets between the two triangles of each fillet quad need
+// Steiner points well inside (TetGen -pYq's maximum there: 6.67).
+TEST(VolumeTetrahedralize, MissingDelaunayTrianglesAreRecoveredByEdgeRemoval) {
+  const auto part = mesh::to_surface_mesh(io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/cad_fillet3.off"));
+  const auto r = expect_exact_by(part, false, true);
+  EXPECT_TRUE(r.interior.direct);
+  EXPECT_LT(r.interior.max_amips, 6.67);
+  std::printf("cad_fillet3: %d tets, max AMIPS %.4g\n", r.mesh.num_tets(), r.interior.max_amips);
+}
+
 // abc_00000001 has needle input faces (0.07 x 0.0008) under a free vertex
 // 2e-5 deep and hemmed in by its star (max AMIPS 5e4 before relocation):
 // it must move through a cavity, and the result must stay exact.

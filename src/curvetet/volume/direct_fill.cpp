@@ -12,9 +12,13 @@
 #include <deque>
 #include <limits>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace curvetet::volume {
 namespace {
+
+// At most this many missing triangles are worth an attempt at recovery.
+constexpr std::size_t kMaxRecoveries = 1000;
 
 std::uint64_t face_key(int a, int b, int c) {
   int s[3] = {a, b, c};
@@ -66,6 +70,203 @@ std::vector<int> windings(const BackgroundMesh& bg, const std::vector<mesh::Tri>
   return w;
 }
 
+// Tets of a tetrahedralization with their vertex stars, for edge removals.
+struct FlipMesh {
+  const std::vector<mesh::Vec3>& p;
+  std::vector<std::array<int, 4>> tets;
+  std::vector<char> alive;
+  std::vector<std::vector<int>> star;
+
+  std::unordered_set<std::uint64_t> surface_edges;
+
+  FlipMesh(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface)
+      : p(bg.points), tets(bg.tets), alive(bg.tets.size(), 1), star(bg.points.size()) {
+    for (int t = 0; t < static_cast<int>(tets.size()); ++t)
+      for (int x : tets[t]) star[x].push_back(t);
+    for (const auto& f : surface)
+      for (int k = 0; k < 3; ++k) surface_edges.insert(edge_key(f[k], f[(k + 1) % 3]));
+  }
+  int orient(int a, int b, int c, int d) const { return geometry::orient3d(p[a], p[b], p[c], p[d]); }
+  std::vector<int> neighbours(int v) const {
+    std::vector<int> out;
+    for (int t : star[v])
+      for (int x : tets[t])
+        if (x != v) out.push_back(x);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  // The vertices around edge (d, e) in cyclic order, empty when the fan of
+  // its tets is not closed.
+  std::vector<int> ring(int d, int e, std::vector<int>& ring_tets) const {
+    ring_tets.clear();
+    std::vector<std::array<int, 2>> links;
+    for (int t : star[d]) {
+      const auto& q = tets[t];
+      if (std::find(q.begin(), q.end(), e) == q.end()) continue;
+      ring_tets.push_back(t);
+      std::array<int, 2> l;
+      int j = 0;
+      for (int x : q)
+        if (x != d && x != e) l[j++] = x;
+      links.push_back(l);
+    }
+    std::vector<int> cycle;
+    if (links.size() < 3) return cycle;
+    cycle = {links[0][0], links[0][1]};
+    std::vector<char> used(links.size(), 0);
+    used[0] = 1;
+    while (cycle.size() < links.size()) {
+      bool extended = false;
+      for (std::size_t i = 0; i < links.size() && !extended; ++i)
+        if (!used[i] && (links[i][0] == cycle.back() || links[i][1] == cycle.back())) {
+          used[i] = 1;
+          cycle.push_back(links[i][0] == cycle.back() ? links[i][1] : links[i][0]);
+          extended = true;
+        }
+      if (!extended) return {};
+    }
+    // closed: the last link joins the end back to the start
+    for (std::size_t i = 0; i < links.size(); ++i)
+      if (!used[i]) {
+        const bool closes = (links[i][0] == cycle.back() && links[i][1] == cycle.front()) ||
+                            (links[i][1] == cycle.back() && links[i][0] == cycle.front());
+        if (!closes) return {};
+      }
+    return cycle;
+  }
+  // Replaces the tets around edge (d, e) by the two cones, from d and from
+  // e, over a triangulation of its ring polygon that has the triangle (or,
+  // given two vertices, the diagonal) `corners`: that triangle plus a fan on
+  // each chain of the ring between consecutive corners. Kept only if every
+  // new tet is positive (then they tile the old ring).
+  bool remove_edge_for(int d, int e, std::vector<int> corners) {
+    std::vector<int> ring_tets;
+    auto cycle = ring(d, e, ring_tets);
+    if (cycle.empty()) return false;
+    const long n = static_cast<long>(cycle.size());
+    const auto at = [&](int x) { return static_cast<long>(std::find(cycle.begin(), cycle.end(), x) - cycle.begin()); };
+    for (int x : corners)
+      if (at(x) == n) return false;
+    std::rotate(cycle.begin(), cycle.begin() + at(corners[0]), cycle.end());
+    std::sort(corners.begin() + 1, corners.end(), [&](int x, int y) { return at(x) < at(y); });
+    std::vector<std::array<int, 3>> tris;
+    if (corners.size() == 3) tris.push_back({corners[0], corners[1], corners[2]});
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      const long to = k + 1 == corners.size() ? n : at(corners[k + 1]);
+      for (long i = at(corners[k]) + 1; i + 1 <= to; ++i) tris.push_back({corners[k], cycle[i], cycle[(i + 1) % n]});
+    }
+    if (static_cast<long>(tris.size()) != n - 2) return false;
+    std::vector<std::array<int, 4>> parts;
+    const int side = orient(tris[0][0], tris[0][1], tris[0][2], d);
+    if (side == 0) return false;
+    for (const auto& t : tris) {
+      if (orient(t[0], t[1], t[2], d) != side || orient(t[0], t[1], t[2], e) != -side) return false;
+      parts.push_back(side > 0 ? std::array<int, 4>{t[0], t[1], t[2], d} : std::array<int, 4>{t[1], t[0], t[2], d});
+      parts.push_back(side > 0 ? std::array<int, 4>{t[1], t[0], t[2], e} : std::array<int, 4>{t[0], t[1], t[2], e});
+    }
+    replace(ring_tets, parts);
+    return true;
+  }
+  bool has_edge(int a, int b) const {
+    for (int t : star[a])
+      if (std::find(tets[t].begin(), tets[t].end(), b) != tets[t].end()) return true;
+    return false;
+  }
+  // Vertices adjacent to all of `vs`.
+  std::vector<int> common_neighbours(const std::vector<int>& vs) const {
+    auto n = neighbours(vs[0]);
+    for (std::size_t i = 1; i < vs.size(); ++i) {
+      const auto m = neighbours(vs[i]);
+      std::vector<int> both;
+      std::set_intersection(n.begin(), n.end(), m.begin(), m.end(), std::back_inserter(both));
+      n = std::move(both);
+    }
+    return n;
+  }
+  // Makes `corners` (an edge, or a triangle whose edges exist) part of the
+  // mesh by removing one edge de whose ring holds them all.
+  // A surface edge is never removed (its surface triangles would go).
+  bool recover(const std::vector<int>& corners) {
+    const auto n = common_neighbours(corners);
+    for (int d : n)
+      for (int e : n)
+        if (d < e && !surface_edges.count(edge_key(d, e)) && has_edge(d, e) && remove_edge_for(d, e, corners))
+          return true;
+    return false;
+  }
+  // Edge uv through the interior of a face xyz whose two tets have u and v
+  // as apexes: the 2-3 flip. Kept only if its three tets are positive.
+  bool flip_23_for(int u, int v) {
+    for (int t : star[u]) {
+      const auto& q = tets[t];
+      std::array<int, 3> f;
+      for (int i = 0, j = 0; i < 4; ++i)
+        if (q[i] != u) f[j++] = q[i];
+      int other = -1;
+      for (int s : star[v]) {
+        const auto& r = tets[s];
+        if (std::find(r.begin(), r.end(), f[0]) != r.end() && std::find(r.begin(), r.end(), f[1]) != r.end() &&
+            std::find(r.begin(), r.end(), f[2]) != r.end())
+          other = s;
+      }
+      if (other < 0) continue;
+      std::vector<std::array<int, 4>> parts;
+      for (int k = 0; k < 3; ++k) {
+        std::array<int, 4> n{u, v, f[k], f[(k + 1) % 3]};
+        const int o = orient(n[0], n[1], n[2], n[3]);
+        if (o == 0) break;
+        if (o < 0) std::swap(n[2], n[3]);
+        parts.push_back(n);
+      }
+      // the three must turn the same way around uv
+      if (parts.size() != 3 || orient(u, v, f[0], f[1]) != orient(u, v, f[1], f[2]) ||
+          orient(u, v, f[1], f[2]) != orient(u, v, f[2], f[0]))
+        continue;
+      replace({t, other}, parts);
+      return true;
+    }
+    return false;
+  }
+  void replace(const std::vector<int>& old, const std::vector<std::array<int, 4>>& parts) {
+    for (int t : old) {
+      alive[t] = 0;
+      for (int x : tets[t]) star[x].erase(std::find(star[x].begin(), star[x].end(), t));
+    }
+    for (const auto& q : parts) {
+      const int id = static_cast<int>(tets.size());
+      tets.push_back(q);
+      alive.push_back(1);
+      for (int x : q) star[x].push_back(id);
+    }
+  }
+  // Triangle abc: its missing edges first, then the triangle.
+  bool recover(int a, int b, int c) {
+    for (auto [u, v] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
+      if (!has_edge(u, v) && !recover({u, v}) && !flip_23_for(u, v)) return false;
+    return has_face(a, b, c) || recover({a, b, c});
+  }
+  bool has_face(int a, int b, int c) const {
+    for (int t : star[a]) {
+      const auto& q = tets[t];
+      if (std::find(q.begin(), q.end(), b) != q.end() && std::find(q.begin(), q.end(), c) != q.end()) return true;
+    }
+    return false;
+  }
+  static std::uint64_t edge_key(int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+  }
+  BackgroundMesh compacted() const {
+    BackgroundMesh out;
+    out.points = p;
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (alive[t]) out.tets.push_back(tets[t]);
+    out.neighbours = face_neighbours(out.tets);
+    return out;
+  }
+};
+
 } // namespace
 
 std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface, OffsetSide side,
@@ -79,7 +280,7 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
     box = padded_box(surface.vertices, options.box_margin);
     append_box_points(box, pts);
   }
-  const BackgroundMesh bg = delaunay(pts);
+  BackgroundMesh bg = delaunay(pts);
 
   // Which tet faces are surface triangles; every triangle must be one.
   std::unordered_map<std::uint64_t, int> triangle_of;
@@ -88,23 +289,54 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
     const auto& t = surface.faces[f];
     triangle_of.emplace(face_key(t[0], t[1], t[2]), f);
   }
-  const int nt = static_cast<int>(bg.tets.size());
-  std::vector<std::array<int, 4>> face_of(nt, {-1, -1, -1, -1});
-  std::vector<char> found(surface.faces.size(), 0);
-  for (int t = 0; t < nt; ++t)
-    for (int k = 0; k < 4; ++k) {
-      const auto& q = bg.tets[t];
-      const auto it = triangle_of.find(face_key(q[(k + 1) % 4], q[(k + 2) % 4], q[(k + 3) % 4]));
-      if (it == triangle_of.end()) continue;
-      face_of[t][k] = it->second;
-      found[it->second] = 1;
+  std::vector<std::array<int, 4>> face_of;
+  auto missing_triangles = [&] {
+    face_of.assign(bg.tets.size(), {-1, -1, -1, -1});
+    std::vector<char> found(surface.faces.size(), 0);
+    for (std::size_t t = 0; t < bg.tets.size(); ++t)
+      for (int k = 0; k < 4; ++k) {
+        const auto& q = bg.tets[t];
+        const auto it = triangle_of.find(face_key(q[(k + 1) % 4], q[(k + 2) % 4], q[(k + 3) % 4]));
+        if (it == triangle_of.end()) continue;
+        face_of[t][k] = it->second;
+        found[it->second] = 1;
+      }
+    std::vector<int> out;
+    for (int f = 0; f < surface.num_faces(); ++f)
+      if (!found[f]) out.push_back(f);
+    return out;
+  };
+  auto missing = missing_triangles();
+  // A few missing triangles (flat CAD faces: co-circular points) are
+  // recovered by edge removals; more mean a surface the layered fill suits.
+  if (!missing.empty() && missing.size() <= kMaxRecoveries) {
+    FlipMesh fm(bg, surface.faces);
+    // One recovery can open the way for another: sweep while some succeed.
+    std::vector<int> left = missing;
+    for (bool progress = true; progress && !left.empty();) {
+      progress = false;
+      std::vector<int> still;
+      for (int f : left) {
+        const auto& t = surface.faces[f];
+        if (fm.recover(t[0], t[1], t[2]))
+          progress = true;
+        else
+          still.push_back(f);
+      }
+      left = std::move(still);
     }
-  const auto missing = std::count(found.begin(), found.end(), 0);
-  if (missing > 0) {
-    logger().debug("volume: {} of {} surface triangles are not Delaunay faces: layered fill", missing,
+    bg = fm.compacted();
+    const auto before = missing.size();
+    missing = missing_triangles();
+    logger().debug("volume: {} of {} missing surface triangles recovered by edge removal", before - missing.size(),
+                   before);
+  }
+  if (!missing.empty()) {
+    logger().debug("volume: {} of {} surface triangles are not Delaunay faces: layered fill", missing.size(),
                    surface.num_faces());
     return std::nullopt;
   }
+  const int nt = static_cast<int>(bg.tets.size());
 
   const auto w = windings(bg, surface.faces, face_of);
   const int keep = inward ? 1 : 0;

@@ -455,30 +455,33 @@ class Optimizer {
     for (int t : cavity) cavity_mark_[t] = cavity_stamp_;
     // Boundary faces as (tet, corner opposite): a new tet is that tet with v
     // at target in place of the corner.
+    // Grow (each tet's faces are looked at once: a face seen strictly stays
+    // so), then collect the faces still on the boundary.
     std::vector<std::pair<int, int>> faces;
-    for (bool grew = true; grew;) {
-      grew = false;
-      faces.clear();
-      for (std::size_t i = 0; i < cavity.size(); ++i) {
-        const Tet& q = m_.tets[cavity[i]];
-        const bool in_star = std::find(q.begin(), q.end(), v) != q.end();
-        for (int k = 0; k < 4; ++k) {
-          if (in_star && q[k] != v) continue;
-          const int n = across(cavity[i], k);
-          if (n >= 0 && cavity_mark_[n] == cavity_stamp_) continue;
-          Tet c = q;
-          c[k] = v;
-          if (m_.v.orient_at(c, v, target) > 0) {
-            faces.emplace_back(cavity[i], k);
-            continue;
-          }
-          if (n < 0 || cavity.size() >= kMaxCavity) return false; // an input face blocks the target
-          cavity_mark_[n] = cavity_stamp_;
-          cavity.push_back(n);
-          grew = true;
+    for (std::size_t i = 0; i < cavity.size(); ++i) {
+      const Tet& q = m_.tets[cavity[i]];
+      const bool in_star = std::find(q.begin(), q.end(), v) != q.end();
+      for (int k = 0; k < 4; ++k) {
+        if (in_star && q[k] != v) continue;
+        const int n = across(cavity[i], k);
+        if (n >= 0 && cavity_mark_[n] == cavity_stamp_) continue;
+        Tet c = q;
+        c[k] = v;
+        if (m_.v.orient_at(c, v, target) > 0) {
+          faces.emplace_back(cavity[i], k);
+          continue;
         }
+        if (n < 0 || cavity.size() >= kMaxCavity) return false; // an input face blocks the target
+        cavity_mark_[n] = cavity_stamp_;
+        cavity.push_back(n);
       }
     }
+    faces.erase(std::remove_if(faces.begin(), faces.end(),
+                               [&](const std::pair<int, int>& f) {
+                                 const int n = across(f.first, f.second);
+                                 return n >= 0 && cavity_mark_[n] == cavity_stamp_;
+                               }),
+                faces.end());
     if (!bounds_sphere(faces)) return false;
     double old_max = 0, new_max = 0;
     for (int t : cavity) old_max = std::max(old_max, tet_energy(t));
@@ -1242,22 +1245,38 @@ bool relocate_worst(Optimizer& o, const std::vector<int>& bad, double above) {
   return any;
 }
 
-// Tets of `bad` still above `above`: a new vertex at the circumcentre (or,
-// when that is outside the mesh or not better, the centroid), Delaunay
-// refinement style.
+// Tets of `bad` still above `above`: a new vertex, Delaunay-refinement
+// style, at the first of these that improves: the circumcentre; for each of
+// the tet's faces on the boundary, where a regular tet on that face would
+// have its apex (a flat tet between two boundary faces, as on a fillet,
+// needs a point well inside); the centroid.
 bool insert_worst(Optimizer& o, const std::vector<int>& bad, double above) {
   auto& m = o.mesh();
   bool any = false;
-  for (int t : bad)
-    if (o.alive(t) && o.tet_energy(t) >= above) {
-      const auto& q = m.tets[t];
-      const Vec3 a = m.v.d[q[0]], b = m.v.d[q[1]] - a, c = m.v.d[q[2]] - a, d = m.v.d[q[3]] - a;
-      const Vec3 centre =
-          a + (b.squaredNorm() * c.cross(d) + c.squaredNorm() * d.cross(b) + d.squaredNorm() * b.cross(c)) /
-                  (2 * b.dot(c.cross(d)));
-      const Vec3 centroid = a + 0.25 * (b + c + d);
-      any |= (centre.allFinite() && o.insert_vertex(t, centre)) || (o.alive(t) && o.insert_vertex(t, centroid));
+  for (int t : bad) {
+    if (!o.alive(t) || o.tet_energy(t) < above) continue;
+    const auto q = m.tets[t];
+    std::array<Vec3, 4> x;
+    for (int k = 0; k < 4; ++k) x[k] = m.v.d[q[k]];
+    const Vec3 b = x[1] - x[0], c = x[2] - x[0], d = x[3] - x[0];
+    std::vector<Vec3> candidates{
+        x[0] + (b.squaredNorm() * c.cross(d) + c.squaredNorm() * d.cross(b) + d.squaredNorm() * b.cross(c)) /
+                   (2 * b.dot(c.cross(d)))};
+    for (int k = 0; k < 4; ++k) {
+      if (o.across(t, k) >= 0) continue;
+      const Vec3 &f0 = x[(k + 1) % 4], &f1 = x[(k + 2) % 4], &f2 = x[(k + 3) % 4];
+      Vec3 n = (f1 - f0).cross(f2 - f0).normalized();
+      if (n.dot(x[k] - f0) < 0) n = -n; // towards the tet, i.e. inside
+      const double edge = ((f1 - f0).norm() + (f2 - f1).norm() + (f0 - f2).norm()) / 3;
+      candidates.push_back((f0 + f1 + f2) / 3 + std::sqrt(2.0 / 3.0) * edge * n);
     }
+    candidates.push_back(0.25 * (x[0] + x[1] + x[2] + x[3]));
+    for (const Vec3& p : candidates)
+      if (p.allFinite() && o.alive(t) && o.insert_vertex(t, p)) {
+        any = true;
+        break;
+      }
+  }
   return any;
 }
 
