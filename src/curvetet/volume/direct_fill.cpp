@@ -11,6 +11,7 @@
 #include <chrono>
 #include <deque>
 #include <limits>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -228,22 +229,135 @@ struct FlipMesh {
     }
     return false;
   }
-  void replace(const std::vector<int>& old, const std::vector<std::array<int, 4>>& parts) {
+  // Returns the new tets' ids.
+  std::vector<int> replace(const std::vector<int>& old, const std::vector<std::array<int, 4>>& parts) {
     for (int t : old) {
       alive[t] = 0;
       for (int x : tets[t]) star[x].erase(std::find(star[x].begin(), star[x].end(), t));
     }
+    std::vector<int> ids;
     for (const auto& q : parts) {
       const int id = static_cast<int>(tets.size());
       tets.push_back(q);
       alive.push_back(1);
       for (int x : q) star[x].push_back(id);
+      ids.push_back(id);
     }
+    return ids;
+  }
+  void undo(const std::vector<int>& old, const std::vector<int>& added) {
+    for (int t : added) {
+      alive[t] = 0;
+      for (int x : tets[t]) star[x].erase(std::find(star[x].begin(), star[x].end(), t));
+    }
+    for (int t : old) {
+      alive[t] = 1;
+      for (int x : tets[t]) star[x].push_back(t);
+    }
+  }
+  // The tet sharing face (a, b, c) with t, or -1.
+  int across(int t, int a, int b, int c) const {
+    for (int s : star[a]) {
+      if (s == t) continue;
+      const auto& r = tets[s];
+      if (std::find(r.begin(), r.end(), b) != r.end() && std::find(r.begin(), r.end(), c) != r.end()) return s;
+    }
+    return -1;
+  }
+  // Whether the line uv passes through the interior of triangle abc.
+  bool line_pierces(int u, int v, int a, int b, int c) const {
+    const int s = orient(u, v, a, b);
+    return s != 0 && orient(u, v, b, c) == s && orient(u, v, c, a) == s;
+  }
+  // The interior faces the segment uv passes through, walking from u, as
+  // (tet before, tet after); nullopt when the walk meets an edge or a vertex
+  // on the way (not handled) or runs long.
+  std::optional<std::vector<std::pair<int, int>>> crossings(int u, int v) const {
+    std::vector<std::pair<int, int>> out;
+    int t = -1;
+    std::array<int, 3> f{};
+    for (int s : star[u]) {
+      std::array<int, 3> g;
+      for (int i = 0, j = 0; i < 4; ++i)
+        if (tets[s][i] != u) g[j++] = tets[s][i];
+      if (line_pierces(u, v, g[0], g[1], g[2]) && orient(g[0], g[1], g[2], u) * orient(g[0], g[1], g[2], v) < 0) {
+        t = s;
+        f = g;
+        break;
+      }
+    }
+    for (int steps = 0; t >= 0 && steps < 64; ++steps) {
+      const int n = across(t, f[0], f[1], f[2]);
+      if (n < 0) return std::nullopt;
+      out.emplace_back(t, n);
+      int w = -1;
+      for (int x : tets[n])
+        if (x != f[0] && x != f[1] && x != f[2]) w = x;
+      if (w == v) return out;
+      bool next = false;
+      for (int k = 0; k < 3 && !next; ++k) {
+        const std::array<int, 3> g{f[k], f[(k + 1) % 3], w};
+        if (line_pierces(u, v, g[0], g[1], g[2])) {
+          t = n;
+          f = g;
+          next = true;
+        }
+      }
+      if (!next) return std::nullopt;
+    }
+    return std::nullopt;
+  }
+  // 2-3 flip of the face shared by tets t and n; empty if not convex.
+  std::vector<int> flip_23(int t, int n) {
+    std::array<int, 3> f;
+    int j = 0, apex_t = -1, apex_n = -1;
+    for (int x : tets[t])
+      if (std::find(tets[n].begin(), tets[n].end(), x) != tets[n].end())
+        f[j++] = x;
+      else
+        apex_t = x;
+    for (int x : tets[n])
+      if (std::find(f.begin(), f.end(), x) == f.end()) apex_n = x;
+    if (j != 3) return {};
+    std::vector<std::array<int, 4>> parts;
+    for (int k = 0; k < 3; ++k) {
+      std::array<int, 4> q{apex_t, apex_n, f[k], f[(k + 1) % 3]};
+      const int o = orient(q[0], q[1], q[2], q[3]);
+      if (o == 0) return {};
+      if (o < 0) std::swap(q[2], q[3]);
+      parts.push_back(q);
+    }
+    if (orient(apex_t, apex_n, f[0], f[1]) != orient(apex_t, apex_n, f[1], f[2]) ||
+        orient(apex_t, apex_n, f[1], f[2]) != orient(apex_t, apex_n, f[2], f[0]))
+      return {};
+    return replace({t, n}, parts);
+  }
+  // Edge uv by 2-3 flips of the faces it crosses, each kept only if it
+  // shortens the walk from u to v (so the search ends).
+  bool recover_by_walk(int u, int v) {
+    for (int round = 0; round < 32 && !has_edge(u, v); ++round) {
+      const auto path = crossings(u, v);
+      if (!path) return false;
+      bool shorter = false;
+      for (auto [t, n] : *path) {
+        const auto added = flip_23(t, n);
+        if (added.empty()) continue;
+        const auto after = has_edge(u, v) ? std::optional<std::vector<std::pair<int, int>>>(std::vector<std::pair<int, int>>{})
+                                          : crossings(u, v);
+        if (after && after->size() < path->size()) {
+          shorter = true;
+          break;
+        }
+        undo({t, n}, added);
+      }
+      if (!shorter) return false;
+    }
+    return has_edge(u, v);
   }
   // Triangle abc: its missing edges first, then the triangle.
   bool recover(int a, int b, int c) {
     for (auto [u, v] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
-      if (!has_edge(u, v) && !recover({u, v}) && !flip_23_for(u, v)) return false;
+      if (!has_edge(u, v) && !recover({u, v}) && !flip_23_for(u, v) && !recover_by_walk(u, v)) return false;
     return has_face(a, b, c) || recover({a, b, c});
   }
   bool has_face(int a, int b, int c) const {

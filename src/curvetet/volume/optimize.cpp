@@ -1268,7 +1268,8 @@ bool insert_worst(Optimizer& o, const std::vector<int>& bad, double above) {
       Vec3 n = (f1 - f0).cross(f2 - f0).normalized();
       if (n.dot(x[k] - f0) < 0) n = -n; // towards the tet, i.e. inside
       const double edge = ((f1 - f0).norm() + (f2 - f1).norm() + (f0 - f2).norm()) / 3;
-      candidates.push_back((f0 + f1 + f2) / 3 + std::sqrt(2.0 / 3.0) * edge * n);
+      for (double depth : {1.0, 0.5, 0.25}) // nearer, where the surface curves in
+        candidates.push_back((f0 + f1 + f2) / 3 + depth * std::sqrt(2.0 / 3.0) * edge * n);
     }
     candidates.push_back(0.25 * (x[0] + x[1] + x[2] + x[3]));
     for (const Vec3& p : candidates)
@@ -1315,6 +1316,7 @@ struct WorstPassPlan {
   double focus = 0.5;
   bool splits = true;  // edge or tet splits
   bool insert = false; // Delaunay-style insertions before the splits
+  double min_gain = 0;  // see worst_pass
 };
 void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
   auto& m = o.mesh();
@@ -1331,6 +1333,9 @@ void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
       }
     if (!(mx < previous) && !(mx_all < previous_all)) break;
     if (mx_all < kGoodMaxEnergy) break;
+    // Diminishing returns: a pass that took the maximum down by less than
+    // plan.min_gain (relative) is the last, once it is reasonable.
+    if (mx_all < 1.5 * kGoodMaxEnergy && mx_all > (1 - plan.min_gain) * previous_all) break;
     previous = mx;
     previous_all = mx_all;
     const double threshold = std::max(2.0, plan.focus * (mx > 0 ? mx : mx_all));
@@ -1409,6 +1414,7 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
   if (all_frozen) {
     plan.passes = 30;
     plan.focus = 0.75;
+    plan.min_gain = 0.03;
     plan.insert = true;
   }
   if (options.optimize_rounds > 0) worst_pass(o, plan);
