@@ -18,6 +18,13 @@ namespace curvetet::volume::exact {
 namespace {
 
 using Tet = std::array<int, 4>;
+
+// Centre of the sphere through a, b, c, d (not finite for a flat tet).
+Vec3 circumcentre(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  return a + (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) /
+                 (2 * u.dot(v.cross(w)));
+}
 // Largest AMIPS energy a collapse may give a tet whose 4 vertices are frozen.
 constexpr double kFrozenTetLimit = 6.0;
 constexpr double kStale = std::numeric_limits<double>::quiet_NaN();
@@ -431,13 +438,8 @@ class Optimizer {
   // chooses the cavity; its validity is decided exactly by restar()).
   bool in_circumsphere(int t, const Vec3& p) const {
     const Tet& q = m_.tets[t];
-    const Vec3 a = m_.v.d[q[0]];
-    const Vec3 b = m_.v.d[q[1]] - a, c = m_.v.d[q[2]] - a, d = m_.v.d[q[3]] - a;
-    const double det = b.dot(c.cross(d));
-    if (!(det > 0)) return false;
-    const Vec3 centre = (b.squaredNorm() * c.cross(d) + c.squaredNorm() * d.cross(b) + d.squaredNorm() * b.cross(c)) /
-                        (2 * det);
-    return (p - a - centre).squaredNorm() < centre.squaredNorm();
+    const Vec3 centre = circumcentre(m_.v.d[q[0]], m_.v.d[q[1]], m_.v.d[q[2]], m_.v.d[q[3]]);
+    return centre.allFinite() && (p - centre).squaredNorm() < (m_.v.d[q[0]] - centre).squaredNorm();
   }
 
   // Replaces `seed` (tets, marked or not) by the cone from v at target over
@@ -1258,10 +1260,7 @@ bool insert_worst(Optimizer& o, const std::vector<int>& bad, double above) {
     const auto q = m.tets[t];
     std::array<Vec3, 4> x;
     for (int k = 0; k < 4; ++k) x[k] = m.v.d[q[k]];
-    const Vec3 b = x[1] - x[0], c = x[2] - x[0], d = x[3] - x[0];
-    std::vector<Vec3> candidates{
-        x[0] + (b.squaredNorm() * c.cross(d) + c.squaredNorm() * d.cross(b) + d.squaredNorm() * b.cross(c)) /
-                   (2 * b.dot(c.cross(d)))};
+    std::vector<Vec3> candidates{circumcentre(x[0], x[1], x[2], x[3])};
     for (int k = 0; k < 4; ++k) {
       if (o.across(t, k) >= 0) continue;
       const Vec3 &f0 = x[(k + 1) % 4], &f1 = x[(k + 2) % 4], &f2 = x[(k + 3) % 4];

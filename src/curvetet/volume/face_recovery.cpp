@@ -1,0 +1,324 @@
+#include "curvetet/volume/face_recovery.hpp"
+
+#include "curvetet/geometry/predicates.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <unordered_set>
+
+namespace curvetet::volume {
+namespace {
+
+// Tets of a tetrahedralization with their vertex stars, for edge removals.
+struct FlipMesh {
+  const std::vector<mesh::Vec3>& p;
+  std::vector<std::array<int, 4>> tets;
+  std::vector<char> alive;
+  std::vector<std::vector<int>> star;
+
+  std::unordered_set<std::uint64_t> surface_edges;
+
+  FlipMesh(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface)
+      : p(bg.points), tets(bg.tets), alive(bg.tets.size(), 1), star(bg.points.size()) {
+    for (int t = 0; t < static_cast<int>(tets.size()); ++t)
+      for (int x : tets[t]) star[x].push_back(t);
+    for (const auto& f : surface)
+      for (int k = 0; k < 3; ++k) surface_edges.insert(edge_key(f[k], f[(k + 1) % 3]));
+  }
+  int orient(int a, int b, int c, int d) const { return geometry::orient3d(p[a], p[b], p[c], p[d]); }
+  std::vector<int> neighbours(int v) const {
+    std::vector<int> out;
+    for (int t : star[v])
+      for (int x : tets[t])
+        if (x != v) out.push_back(x);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  // The vertices around edge (d, e) in cyclic order, empty when the fan of
+  // its tets is not closed.
+  std::vector<int> ring(int d, int e, std::vector<int>& ring_tets) const {
+    ring_tets.clear();
+    std::vector<std::array<int, 2>> links;
+    for (int t : star[d]) {
+      const auto& q = tets[t];
+      if (std::find(q.begin(), q.end(), e) == q.end()) continue;
+      ring_tets.push_back(t);
+      std::array<int, 2> l;
+      int j = 0;
+      for (int x : q)
+        if (x != d && x != e) l[j++] = x;
+      links.push_back(l);
+    }
+    std::vector<int> cycle;
+    if (links.size() < 3) return cycle;
+    cycle = {links[0][0], links[0][1]};
+    std::vector<char> used(links.size(), 0);
+    used[0] = 1;
+    while (cycle.size() < links.size()) {
+      bool extended = false;
+      for (std::size_t i = 0; i < links.size() && !extended; ++i)
+        if (!used[i] && (links[i][0] == cycle.back() || links[i][1] == cycle.back())) {
+          used[i] = 1;
+          cycle.push_back(links[i][0] == cycle.back() ? links[i][1] : links[i][0]);
+          extended = true;
+        }
+      if (!extended) return {};
+    }
+    // closed: the last link joins the end back to the start
+    for (std::size_t i = 0; i < links.size(); ++i)
+      if (!used[i]) {
+        const bool closes = (links[i][0] == cycle.back() && links[i][1] == cycle.front()) ||
+                            (links[i][1] == cycle.back() && links[i][0] == cycle.front());
+        if (!closes) return {};
+      }
+    return cycle;
+  }
+  // Replaces the tets around edge (d, e) by the two cones, from d and from
+  // e, over a triangulation of its ring polygon that has the triangle (or,
+  // given two vertices, the diagonal) `corners`: that triangle plus a fan on
+  // each chain of the ring between consecutive corners. Kept only if every
+  // new tet is positive (then they tile the old ring).
+  bool remove_edge_for(int d, int e, std::vector<int> corners) {
+    std::vector<int> ring_tets;
+    auto cycle = ring(d, e, ring_tets);
+    if (cycle.empty()) return false;
+    const long n = static_cast<long>(cycle.size());
+    const auto at = [&](int x) { return static_cast<long>(std::find(cycle.begin(), cycle.end(), x) - cycle.begin()); };
+    for (int x : corners)
+      if (at(x) == n) return false;
+    std::rotate(cycle.begin(), cycle.begin() + at(corners[0]), cycle.end());
+    std::sort(corners.begin() + 1, corners.end(), [&](int x, int y) { return at(x) < at(y); });
+    std::vector<std::array<int, 3>> tris;
+    if (corners.size() == 3) tris.push_back({corners[0], corners[1], corners[2]});
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      const long to = k + 1 == corners.size() ? n : at(corners[k + 1]);
+      for (long i = at(corners[k]) + 1; i + 1 <= to; ++i) tris.push_back({corners[k], cycle[i], cycle[(i + 1) % n]});
+    }
+    if (static_cast<long>(tris.size()) != n - 2) return false;
+    std::vector<std::array<int, 4>> parts;
+    const int side = orient(tris[0][0], tris[0][1], tris[0][2], d);
+    if (side == 0) return false;
+    for (const auto& t : tris) {
+      if (orient(t[0], t[1], t[2], d) != side || orient(t[0], t[1], t[2], e) != -side) return false;
+      parts.push_back(side > 0 ? std::array<int, 4>{t[0], t[1], t[2], d} : std::array<int, 4>{t[1], t[0], t[2], d});
+      parts.push_back(side > 0 ? std::array<int, 4>{t[1], t[0], t[2], e} : std::array<int, 4>{t[0], t[1], t[2], e});
+    }
+    replace(ring_tets, parts);
+    return true;
+  }
+  bool has_edge(int a, int b) const {
+    for (int t : star[a])
+      if (std::find(tets[t].begin(), tets[t].end(), b) != tets[t].end()) return true;
+    return false;
+  }
+  // Vertices adjacent to all of `vs`.
+  std::vector<int> common_neighbours(const std::vector<int>& vs) const {
+    auto n = neighbours(vs[0]);
+    for (std::size_t i = 1; i < vs.size(); ++i) {
+      const auto m = neighbours(vs[i]);
+      std::vector<int> both;
+      std::set_intersection(n.begin(), n.end(), m.begin(), m.end(), std::back_inserter(both));
+      n = std::move(both);
+    }
+    return n;
+  }
+  // Makes `corners` (an edge, or a triangle whose edges exist) part of the
+  // mesh by removing one edge de whose ring holds them all.
+  // A surface edge is never removed (its surface triangles would go).
+  bool recover(const std::vector<int>& corners) {
+    const auto n = common_neighbours(corners);
+    for (int d : n)
+      for (int e : n)
+        if (d < e && !surface_edges.count(edge_key(d, e)) && has_edge(d, e) && remove_edge_for(d, e, corners))
+          return true;
+    return false;
+  }
+  // Edge uv through a face whose two tets have u and v as apexes: the 2-3
+  // flip of that face.
+  bool flip_23_for(int u, int v) {
+    for (int t : std::vector<int>(star[u])) {
+      std::array<int, 3> f;
+      for (int i = 0, j = 0; i < 4; ++i)
+        if (tets[t][i] != u) f[j++] = tets[t][i];
+      const int n = across(t, f[0], f[1], f[2]);
+      if (n >= 0 && std::find(tets[n].begin(), tets[n].end(), v) != tets[n].end() && !flip_23(t, n).empty())
+        return true;
+    }
+    return false;
+  }
+  // Returns the new tets' ids.
+  std::vector<int> replace(const std::vector<int>& old, const std::vector<std::array<int, 4>>& parts) {
+    for (int t : old) {
+      alive[t] = 0;
+      for (int x : tets[t]) star[x].erase(std::find(star[x].begin(), star[x].end(), t));
+    }
+    std::vector<int> ids;
+    for (const auto& q : parts) {
+      const int id = static_cast<int>(tets.size());
+      tets.push_back(q);
+      alive.push_back(1);
+      for (int x : q) star[x].push_back(id);
+      ids.push_back(id);
+    }
+    return ids;
+  }
+  void undo(const std::vector<int>& old, const std::vector<int>& added) {
+    for (int t : added) {
+      alive[t] = 0;
+      for (int x : tets[t]) star[x].erase(std::find(star[x].begin(), star[x].end(), t));
+    }
+    for (int t : old) {
+      alive[t] = 1;
+      for (int x : tets[t]) star[x].push_back(t);
+    }
+  }
+  // The tet sharing face (a, b, c) with t, or -1.
+  int across(int t, int a, int b, int c) const {
+    for (int s : star[a]) {
+      if (s == t) continue;
+      const auto& r = tets[s];
+      if (std::find(r.begin(), r.end(), b) != r.end() && std::find(r.begin(), r.end(), c) != r.end()) return s;
+    }
+    return -1;
+  }
+  // Whether the line uv passes through the interior of triangle abc.
+  bool line_pierces(int u, int v, int a, int b, int c) const {
+    const int s = orient(u, v, a, b);
+    return s != 0 && orient(u, v, b, c) == s && orient(u, v, c, a) == s;
+  }
+  // The interior faces the segment uv passes through, walking from u, as
+  // (tet before, tet after); nullopt when the walk meets an edge or a vertex
+  // on the way (not handled) or runs long.
+  std::optional<std::vector<std::pair<int, int>>> crossings(int u, int v) const {
+    std::vector<std::pair<int, int>> out;
+    int t = -1;
+    std::array<int, 3> f{};
+    for (int s : star[u]) {
+      std::array<int, 3> g;
+      for (int i = 0, j = 0; i < 4; ++i)
+        if (tets[s][i] != u) g[j++] = tets[s][i];
+      if (line_pierces(u, v, g[0], g[1], g[2]) && orient(g[0], g[1], g[2], u) * orient(g[0], g[1], g[2], v) < 0) {
+        t = s;
+        f = g;
+        break;
+      }
+    }
+    for (int steps = 0; t >= 0 && steps < 64; ++steps) {
+      const int n = across(t, f[0], f[1], f[2]);
+      if (n < 0) return std::nullopt;
+      out.emplace_back(t, n);
+      int w = -1;
+      for (int x : tets[n])
+        if (x != f[0] && x != f[1] && x != f[2]) w = x;
+      if (w == v) return out;
+      bool next = false;
+      for (int k = 0; k < 3 && !next; ++k) {
+        const std::array<int, 3> g{f[k], f[(k + 1) % 3], w};
+        if (line_pierces(u, v, g[0], g[1], g[2])) {
+          t = n;
+          f = g;
+          next = true;
+        }
+      }
+      if (!next) return std::nullopt;
+    }
+    return std::nullopt;
+  }
+  // 2-3 flip of the face shared by tets t and n; empty if not convex.
+  std::vector<int> flip_23(int t, int n) {
+    std::array<int, 3> f;
+    int j = 0, apex_t = -1, apex_n = -1;
+    for (int x : tets[t])
+      if (std::find(tets[n].begin(), tets[n].end(), x) != tets[n].end())
+        f[j++] = x;
+      else
+        apex_t = x;
+    for (int x : tets[n])
+      if (std::find(f.begin(), f.end(), x) == f.end()) apex_n = x;
+    if (j != 3) return {};
+    std::vector<std::array<int, 4>> parts;
+    for (int k = 0; k < 3; ++k) {
+      std::array<int, 4> q{apex_t, apex_n, f[k], f[(k + 1) % 3]};
+      const int o = orient(q[0], q[1], q[2], q[3]);
+      if (o == 0) return {};
+      if (o < 0) std::swap(q[2], q[3]);
+      parts.push_back(q);
+    }
+    if (orient(apex_t, apex_n, f[0], f[1]) != orient(apex_t, apex_n, f[1], f[2]) ||
+        orient(apex_t, apex_n, f[1], f[2]) != orient(apex_t, apex_n, f[2], f[0]))
+      return {};
+    return replace({t, n}, parts);
+  }
+  // Edge uv by 2-3 flips of the faces it crosses, each kept only if it
+  // shortens the walk from u to v (so the search ends).
+  bool recover_by_walk(int u, int v) {
+    for (int round = 0; round < 32 && !has_edge(u, v); ++round) {
+      const auto path = crossings(u, v);
+      if (!path) return false;
+      bool shorter = false;
+      for (auto [t, n] : *path) {
+        const auto added = flip_23(t, n);
+        if (added.empty()) continue;
+        const auto after = has_edge(u, v) ? std::optional<std::vector<std::pair<int, int>>>(std::vector<std::pair<int, int>>{})
+                                          : crossings(u, v);
+        if (after && after->size() < path->size()) {
+          shorter = true;
+          break;
+        }
+        undo({t, n}, added);
+      }
+      if (!shorter) return false;
+    }
+    return has_edge(u, v);
+  }
+  // Triangle abc: its missing edges first, then the triangle.
+  bool recover(int a, int b, int c) {
+    for (auto [u, v] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
+      if (!has_edge(u, v) && !recover({u, v}) && !flip_23_for(u, v) && !recover_by_walk(u, v)) return false;
+    return has_face(a, b, c) || recover({a, b, c});
+  }
+  bool has_face(int a, int b, int c) const {
+    for (int t : star[a]) {
+      const auto& q = tets[t];
+      if (std::find(q.begin(), q.end(), b) != q.end() && std::find(q.begin(), q.end(), c) != q.end()) return true;
+    }
+    return false;
+  }
+  static std::uint64_t edge_key(int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+  }
+  BackgroundMesh compacted() const {
+    BackgroundMesh out;
+    out.points = p;
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (alive[t]) out.tets.push_back(tets[t]);
+    out.neighbours = face_neighbours(out.tets);
+    return out;
+  }
+};
+
+} // namespace
+
+BackgroundMesh recover_triangles(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
+                                 const std::vector<int>& missing) {
+  FlipMesh fm(bg, surface);
+  // One recovery can open the way for another: sweep while some succeed.
+  std::vector<int> left = missing;
+  for (bool progress = true; progress && !left.empty();) {
+    progress = false;
+    std::vector<int> still;
+    for (int f : left) {
+      const auto& t = surface[f];
+      if (fm.recover(t[0], t[1], t[2]))
+        progress = true;
+      else
+        still.push_back(f);
+    }
+    left = std::move(still);
+  }
+  return fm.compacted();
+}
+
+} // namespace curvetet::volume
