@@ -50,7 +50,9 @@ TEST_P(MshRoundTrip, BitExact) {
   auto m = curvetet::testing::curved_box(order, 2, 0.2);
   // Awkward coordinates: not short decimals.
   for (auto& p : m.nodes) p *= 1.0 / 3.0;
-  const std::string path = temp_path("round_trip.msh");
+  // One file per case: ctest runs the cases in parallel processes.
+  const std::string path =
+      temp_path("round_trip_" + std::to_string(order) + "_" + std::to_string(static_cast<int>(format)) + ".msh");
   io::write_msh(path, m, format);
   auto back = io::read_msh(path);
   expect_same(m, back);

@@ -79,33 +79,35 @@ struct FlipMesh {
   // given two vertices, the diagonal) `corners`: that triangle plus a fan on
   // each chain of the ring between consecutive corners. Kept only if every
   // new tet is positive (then they tile the old ring).
-  bool remove_edge_for(int d, int e, std::vector<int> corners) {
+  // Returns the new tets (empty: not done); `removed` gets the old ones.
+  std::vector<int> remove_edge_for(int d, int e, std::vector<int> corners, std::vector<int>* removed = nullptr) {
     std::vector<int> ring_tets;
     auto cycle = ring(d, e, ring_tets);
-    if (cycle.empty()) return false;
+    if (cycle.empty()) return {};
     const long n = static_cast<long>(cycle.size());
     const auto at = [&](int x) { return static_cast<long>(std::find(cycle.begin(), cycle.end(), x) - cycle.begin()); };
     for (int x : corners)
-      if (at(x) == n) return false;
+      if (at(x) == n) return {};
     std::rotate(cycle.begin(), cycle.begin() + at(corners[0]), cycle.end());
     std::sort(corners.begin() + 1, corners.end(), [&](int x, int y) { return at(x) < at(y); });
     std::vector<std::array<int, 3>> tris;
     if (corners.size() == 3) tris.push_back({corners[0], corners[1], corners[2]});
     for (std::size_t k = 0; k < corners.size(); ++k) {
-      const long to = k + 1 == corners.size() ? n : at(corners[k + 1]);
+      // one corner: a plain fan, which stops before wrapping to itself
+      const long to = k + 1 == corners.size() ? (corners.size() == 1 ? n - 1 : n) : at(corners[k + 1]);
       for (long i = at(corners[k]) + 1; i + 1 <= to; ++i) tris.push_back({corners[k], cycle[i], cycle[(i + 1) % n]});
     }
-    if (static_cast<long>(tris.size()) != n - 2) return false;
+    if (static_cast<long>(tris.size()) != n - 2) return {};
     std::vector<std::array<int, 4>> parts;
     const int side = orient(tris[0][0], tris[0][1], tris[0][2], d);
-    if (side == 0) return false;
+    if (side == 0) return {};
     for (const auto& t : tris) {
-      if (orient(t[0], t[1], t[2], d) != side || orient(t[0], t[1], t[2], e) != -side) return false;
+      if (orient(t[0], t[1], t[2], d) != side || orient(t[0], t[1], t[2], e) != -side) return {};
       parts.push_back(side > 0 ? std::array<int, 4>{t[0], t[1], t[2], d} : std::array<int, 4>{t[1], t[0], t[2], d});
       parts.push_back(side > 0 ? std::array<int, 4>{t[1], t[0], t[2], e} : std::array<int, 4>{t[0], t[1], t[2], e});
     }
-    replace(ring_tets, parts);
-    return true;
+    if (removed) *removed = ring_tets;
+    return replace(ring_tets, parts);
   }
   bool has_edge(int a, int b) const {
     for (int t : star[a])
@@ -130,7 +132,7 @@ struct FlipMesh {
     const auto n = common_neighbours(corners);
     for (int d : n)
       for (int e : n)
-        if (d < e && !surface_edges.count(edge_key(d, e)) && has_edge(d, e) && remove_edge_for(d, e, corners))
+        if (d < e && !surface_edges.count(edge_key(d, e)) && has_edge(d, e) && !remove_edge_for(d, e, corners).empty())
           return true;
     return false;
   }
@@ -256,17 +258,34 @@ struct FlipMesh {
     for (int round = 0; round < 32 && !has_edge(u, v); ++round) {
       const auto path = crossings(u, v);
       if (!path) return false;
+      // Kept if the walk got shorter, else undone.
+      auto shortened = [&](const std::vector<int>& old, const std::vector<int>& added) {
+        if (added.empty()) return false;
+        if (has_edge(u, v)) return true;
+        const auto after = crossings(u, v);
+        if (after && after->size() < path->size()) return true;
+        undo(old, added);
+        return false;
+      };
       bool shorter = false;
       for (auto [t, n] : *path) {
-        const auto added = flip_23(t, n);
-        if (added.empty()) continue;
-        const auto after = has_edge(u, v) ? std::optional<std::vector<std::pair<int, int>>>(std::vector<std::pair<int, int>>{})
-                                          : crossings(u, v);
-        if (after && after->size() < path->size()) {
-          shorter = true;
-          break;
+        if ((shorter = shortened({t, n}, flip_23(t, n)))) break;
+        // Else remove an edge of the crossed face (fans from each vertex of
+        // its ring): the configuration may be non-convex for 2-3.
+        std::array<int, 3> f;
+        for (int i = 0, j = 0; i < 4; ++i)
+          if (std::find(tets[n].begin(), tets[n].end(), tets[t][i]) != tets[n].end()) f[j++] = tets[t][i];
+        for (int k = 0; k < 3 && !shorter; ++k) {
+          const int x = f[k], y = f[(k + 1) % 3];
+          if (surface_edges.count(edge_key(x, y))) continue;
+          std::vector<int> ring_tets;
+          for (int apex : ring(x, y, ring_tets)) {
+            std::vector<int> old;
+            const auto added = remove_edge_for(x, y, {apex}, &old);
+            if ((shorter = shortened(old, added))) break;
+          }
         }
-        undo({t, n}, added);
+        if (shorter) break;
       }
       if (!shorter) return false;
     }
