@@ -39,6 +39,7 @@ class Optimizer {
       for (int x : m_.tets[t]) vt_[x].push_back(t);
     alive_.assign(m_.tets.size(), 1);
     energy_.assign(m_.tets.size(), kStale);
+    flip_failed_.assign(m_.tets.size(), 0);
     touched_.assign(m_.v.size(), 0);
     smooth_failed_.assign(m_.v.size(), 0);
     max_failed_.assign(m_.v.size(), 0);
@@ -189,6 +190,13 @@ class Optimizer {
     return true;
   }
   std::uint64_t clock() const { return clock_; }
+  // Whether every flip on t failed last time and nothing around it changed
+  // since (the stars of its corners hold every tet those flips look at).
+  bool flips_known_to_fail(int t) const {
+    const std::uint64_t when = flip_failed_[t];
+    return when != 0 && std::all_of(m_.tets[t].begin(), m_.tets[t].end(), [&](int x) { return unchanged_since(x, when); });
+  }
+  void mark_flips_failed(int t) { flip_failed_[t] = clock_; }
 
   // --- worst-tet smoothing: lowers the maximum energy of v's star by a
   // compass search (the gradient of the worst tet first, then the axes);
@@ -484,17 +492,16 @@ class Optimizer {
                                  return n >= 0 && cavity_mark_[n] == cavity_stamp_;
                                }),
                 faces.end());
-    if (!bounds_sphere(faces)) return false;
-    double old_max = 0, new_max = 0;
+    double old_max = 0;
     for (int t : cavity) old_max = std::max(old_max, tet_energy(t));
     std::vector<Tet> parts;
     for (auto [t, k] : faces) {
       Tet c = m_.tets[t];
       c[k] = v;
-      new_max = std::max(new_max, energy_at(c, v, target));
+      if (!(energy_at(c, v, target) < old_max)) return false; // before the costlier sphere check
       parts.push_back(c);
     }
-    if (!(new_max < old_max)) return false;
+    if (!bounds_sphere(faces)) return false;
     for (int t : cavity) kill(t);
     move(v, target);
     for (const Tet& c : parts) add(c);
@@ -551,11 +558,14 @@ class Optimizer {
   // The tet across the face of t opposite its corner k, or -1.
   int across(int t, int k) const {
     const Tet& q = m_.tets[t];
-    const int a = q[(k + 1) % 4], b = q[(k + 2) % 4], c = q[(k + 3) % 4];
+    int a = q[(k + 1) % 4], b = q[(k + 2) % 4], c = q[(k + 3) % 4];
+    if (vt_[b].size() < vt_[a].size()) std::swap(a, b); // scan the smallest star
+    if (vt_[c].size() < vt_[a].size()) std::swap(a, c);
     for (int s : vt_[a]) {
       if (s == t) continue;
       const Tet& r = m_.tets[s];
-      if (std::find(r.begin(), r.end(), b) != r.end() && std::find(r.begin(), r.end(), c) != r.end()) return s;
+      const bool has_b = r[0] == b || r[1] == b || r[2] == b || r[3] == b;
+      if (has_b && (r[0] == c || r[1] == c || r[2] == c || r[3] == c)) return s;
     }
     return -1;
   }
@@ -945,6 +955,7 @@ class Optimizer {
   mutable std::array<std::vector<std::array<int, 2>>, 4> link_edges_;
   mutable std::array<std::vector<int>, 4> link_verts_;
   std::vector<double> energy_; // per tet; kStale until computed
+  std::vector<std::uint64_t> flip_failed_; // per tet: clock_ of its last failed flip_pass visit, or 0
   // Change stamps: touched_[x] = clock_ when x moved or a tet at x changed;
   // smooth_failed_[x], max_failed_[x] = clock_ at x's last failed smoothing.
   std::uint64_t clock_ = 1;
@@ -1033,6 +1044,7 @@ class Optimizer {
     m_.tets.push_back(t);
     alive_.push_back(1);
     energy_.push_back(kStale);
+    flip_failed_.push_back(0);
     ++clock_;
     for (int x : t) {
       vt_[x].push_back(id);
@@ -1176,7 +1188,7 @@ std::size_t flip_pass(Optimizer& o, double threshold) {
   std::size_t flips = 0;
   for (int t = 0; t < nt; ++t) {
     if (!o.alive(t)) continue;
-    if (o.tet_energy(t) < threshold) continue;
+    if (o.tet_energy(t) < threshold || o.flips_known_to_fail(t)) continue;
     const auto q = m.tets[t];
     bool done = false;
     for (int i = 0; i < 4 && !done; ++i)
@@ -1184,6 +1196,7 @@ std::size_t flip_pass(Optimizer& o, double threshold) {
     for (int k = 0; k < 4 && !done; ++k) done = o.flip_23(t, k);
     for (int i = 0; i < 4 && !done; ++i)
       for (int j = i + 1; j < 4 && !done; ++j) done = o.remove_edge(q[i], q[j]);
+    if (!done) o.mark_flips_failed(t);
     flips += done;
   }
   return flips;
