@@ -30,6 +30,8 @@ Command add_tetrahedralize_command(CLI::App& root) {
   cmd->add_option("--box-margin", o->tet.fill.box_margin, "Box margin around the surface, × bbox diagonal")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("!--layered", o->tet.direct,
+                "Always use the offset layer and BSP fill (paper §4.3), never the Delaunay fast path");
   cmd->add_option("--layer-thickness", o->tet.layer_thickness, "Offset layer thickness target, × bbox diagonal")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

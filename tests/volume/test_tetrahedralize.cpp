@@ -232,5 +232,26 @@ TEST(VolumeTetrahedralize, CommandWritesAVerifiableMsh) {
   }
 }
 
+// --layered keeps the paper's fill where the fast path would apply; the
+// report says which fill ran.
+TEST(VolumeTetrahedralize, LayeredFlagForcesTheLayeredFill) {
+  const auto dir = std::filesystem::temp_directory_path() / "curvetet_test_tetrahedralize_layered";
+  std::filesystem::create_directories(dir);
+  const auto cube = test::unit_cube();
+  io::write_surface((dir / "cube.off").string(), cube);
+  for (const bool layered : {false, true}) {
+    const auto out = (dir / "cube.msh").string(), report = (dir / "cube.json").string();
+    const std::string cmd = std::string(CURVETET_BINARY) + " -q tetrahedralize " + (dir / "cube.off").string() +
+                            " -o " + out + " --report " + report + (layered ? " --layered" : "");
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    std::ifstream in(report);
+    std::stringstream text;
+    text << in.rdbuf();
+    EXPECT_NE(text.str().find(layered ? "\"direct\": false" : "\"direct\": true"), std::string::npos) << text.str();
+    const auto check = volume::verify_tet_mesh(read_back(out), cube.faces);
+    EXPECT_TRUE(check.ok()) << check.text();
+  }
+}
+
 } // namespace
 } // namespace curvetet

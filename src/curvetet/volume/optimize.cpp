@@ -1280,7 +1280,7 @@ bool insert_worst(Optimizer& o, const std::vector<int>& bad, double above) {
       Vec3 n = (f1 - f0).cross(f2 - f0).normalized();
       if (n.dot(x[k] - f0) < 0) n = -n; // towards the tet, i.e. inside
       const double edge = ((f1 - f0).norm() + (f2 - f1).norm() + (f0 - f2).norm()) / 3;
-      for (double depth : {1.0, 0.5, 0.25}) // nearer, where the surface curves in
+      for (double depth : kFractions) // nearer, where the surface curves in
         candidates.push_back((f0 + f1 + f2) / 3 + depth * std::sqrt(2.0 / 3.0) * edge * n);
     }
     candidates.push_back(0.25 * (x[0] + x[1] + x[2] + x[3]));
