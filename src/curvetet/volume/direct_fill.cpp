@@ -18,7 +18,7 @@ namespace curvetet::volume {
 namespace {
 
 // At most this many missing triangles are worth an attempt at recovery.
-constexpr std::size_t kMaxRecoveries = 100000;
+constexpr std::size_t kMaxRecoveries = 1000;
 
 std::uint64_t face_key(int a, int b, int c) {
   int s[3] = {a, b, c};
