@@ -83,6 +83,7 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
     box = padded_box(surface.vertices, options.box_margin);
     append_box_points(box, pts);
   }
+  if (pts.size() >= (std::size_t{1} << 21)) return std::nullopt; // face_key packs ids in 21 bits
   BackgroundMesh bg = delaunay(pts);
 
   // Which tet faces are surface triangles; every triangle must be one.
@@ -153,7 +154,7 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
   stats.exact_vertices = m.v.size();
   stats.direct = true;
   stats.seconds_insert = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  logger().debug("volume: every surface triangle is a Delaunay face: {} of {} tets kept, no Steiner point",
+  logger().debug("volume: every surface triangle is a face: {} of {} tets kept, no Steiner point",
                  m.tets.size(), bg.tets.size());
   t0 = std::chrono::steady_clock::now();
   auto out = exact::round_and_optimize(std::move(m), n, options, stats);
