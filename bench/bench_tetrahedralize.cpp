@@ -1,10 +1,12 @@
 // Boundary-preserving tetrahedralization time (issue 6): `volume::tetrahedralize`
-// (one-sided extrusion + exact insertion + layer + rounding/optimization) on
-// real meshes from ~0.5k to ~100k faces. Target: within 5x of `tetgen -pYq`
-// (bench/compare_tetgen.py measures both on every good mesh).
+// on real meshes from ~0.5k to ~100k faces, by whichever fill applies (the
+// Delaunay fast path or the layered one: extrusion + exact insertion + layer
+// + rounding/optimization), and on two CAD parts by each fill in turn.
+// Target: within 5x of `tetgen -pYq` (bench/compare_tetgen.py measures both
+// on every good mesh).
 // Run: build/bench/bench_tetrahedralize [--benchmark_filter=...]
 // Counters: faces, output tets, per-stage seconds (extrusion, insertion,
-// layer, optimization), max AMIPS energy.
+// layer, optimization), max AMIPS energy, direct (1: the fast path ran).
 #include "curvetet/io/read_surface.hpp"
 #include "curvetet/volume/tetrahedralize.hpp"
 
@@ -14,12 +16,14 @@
 
 namespace {
 
-void BM_Tetrahedralize(benchmark::State& state, const std::string& name) {
+void BM_Tetrahedralize(benchmark::State& state, const std::string& name, bool direct = true) {
   using namespace curvetet;
   const auto input = mesh::to_surface_mesh(io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/" + name));
+  volume::TetrahedralizeOptions options;
+  options.direct = direct;
   volume::TetrahedralizeResult r;
   for (auto _ : state) {
-    r = volume::tetrahedralize(input);
+    r = volume::tetrahedralize(input, options);
     benchmark::DoNotOptimize(r.mesh.tets.data());
   }
   state.counters["faces"] = input.num_faces();
@@ -29,6 +33,7 @@ void BM_Tetrahedralize(benchmark::State& state, const std::string& name) {
   state.counters["s_layer"] = r.interior.seconds_layer;
   state.counters["s_optimize"] = r.interior.seconds_optimize;
   state.counters["max_amips"] = r.interior.max_amips;
+  state.counters["direct"] = r.interior.direct ? 1 : 0;
   state.counters["faces_per_s"] = benchmark::Counter(input.num_faces(), benchmark::Counter::kIsIterationInvariantRate);
 }
 
@@ -43,6 +48,19 @@ BENCHMARK_CAPTURE(BM_Tetrahedralize, armadillo_52k, std::string("armadillo_cgal.
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 BENCHMARK_CAPTURE(BM_Tetrahedralize, nefertiti_100k, std::string("nefertiti.off"))
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+// The same CAD parts by each fill.
+BENCHMARK_CAPTURE(BM_Tetrahedralize, knot2_12k_direct, std::string("knot2_two_components.off"), true)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(BM_Tetrahedralize, knot2_12k_layered, std::string("knot2_two_components.off"), false)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(BM_Tetrahedralize, boolean_29k_direct, std::string("cad_boolean.off"), true)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(BM_Tetrahedralize, boolean_29k_layered, std::string("cad_boolean.off"), false)
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
