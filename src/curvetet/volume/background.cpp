@@ -2,6 +2,7 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/geometry/predicates.hpp"
+#include "curvetet/volume/mesh_keys.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -54,10 +55,7 @@ std::vector<std::array<int, 4>> face_neighbours(const std::vector<std::array<int
   std::vector<std::array<int, 4>> nb(tets.size(), {-1, -1, -1, -1});
   for (int t = 0; t < static_cast<int>(tets.size()); ++t)
     for (int k = 0; k < 4; ++k) {
-      std::array<int, 3> f{tets[t][(k + 1) % 4], tets[t][(k + 2) % 4], tets[t][(k + 3) % 4]};
-      std::sort(f.begin(), f.end());
-      const std::uint64_t key = (static_cast<std::uint64_t>(f[0]) << 42) | (static_cast<std::uint64_t>(f[1]) << 21) |
-                                static_cast<std::uint64_t>(f[2]);
+      const std::uint64_t key = face_key(tets[t][(k + 1) % 4], tets[t][(k + 2) % 4], tets[t][(k + 3) % 4]);
       auto [it, fresh] = open.try_emplace(key, t, k);
       if (!fresh) {
         nb[t][k] = it->second.first;

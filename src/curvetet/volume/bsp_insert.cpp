@@ -1,6 +1,7 @@
 #include "curvetet/volume/bsp_insert.hpp"
 
 #include "curvetet/volume/homogeneous.hpp"
+#include "curvetet/volume/mesh_keys.hpp"
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
@@ -112,11 +113,6 @@ bool collinear(const Point& p, const Point& q, const Point& x) {
     hw[i] = x.h.x[i] * p.h.w - p.h.x[i] * x.h.w;
   }
   return hu[1] * hw[2] == hu[2] * hw[1] && hu[2] * hw[0] == hu[0] * hw[2] && hu[0] * hw[1] == hu[1] * hw[0];
-}
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
 }
 
 struct Face {

@@ -6,6 +6,7 @@
 #include "curvetet/volume/background.hpp"
 #include "curvetet/volume/exact_mesh.hpp"
 #include "curvetet/volume/face_recovery.hpp"
+#include "curvetet/volume/mesh_keys.hpp"
 #include "curvetet/volume/optimize.hpp"
 
 #include <algorithm>
@@ -19,13 +20,6 @@ namespace {
 
 // At most this many missing triangles are worth an attempt at recovery.
 constexpr std::size_t kMaxRecoveries = 1000;
-
-std::uint64_t face_key(int a, int b, int c) {
-  int s[3] = {a, b, c};
-  std::sort(s, s + 3);
-  return (static_cast<std::uint64_t>(s[0]) << 42) | (static_cast<std::uint64_t>(s[1]) << 21) |
-         static_cast<std::uint64_t>(s[2]);
-}
 
 // Winding number of every tet by crossing surface faces from the outside
 // (0): +1 when going against the face's outward normal. Throws if two paths
@@ -83,7 +77,7 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
     box = padded_box(surface.vertices, options.box_margin);
     append_box_points(box, pts);
   }
-  if (pts.size() >= (std::size_t{1} << 21)) return std::nullopt; // face_key packs ids in 21 bits
+  if (pts.size() >= static_cast<std::size_t>(kMaxFaceKeyId)) return std::nullopt; // see face_key
   BackgroundMesh bg = delaunay(pts);
 
   // Which tet faces are surface triangles; every triangle must be one.

@@ -1,6 +1,7 @@
 #include "curvetet/volume/face_recovery.hpp"
 
 #include "curvetet/geometry/predicates.hpp"
+#include "curvetet/volume/mesh_keys.hpp"
 
 #include <algorithm>
 #include <optional>
@@ -50,29 +51,7 @@ struct FlipMesh {
         if (x != d && x != e) l[j++] = x;
       links.push_back(l);
     }
-    std::vector<int> cycle;
-    if (links.size() < 3) return cycle;
-    cycle = {links[0][0], links[0][1]};
-    std::vector<char> used(links.size(), 0);
-    used[0] = 1;
-    while (cycle.size() < links.size()) {
-      bool extended = false;
-      for (std::size_t i = 0; i < links.size() && !extended; ++i)
-        if (!used[i] && (links[i][0] == cycle.back() || links[i][1] == cycle.back())) {
-          used[i] = 1;
-          cycle.push_back(links[i][0] == cycle.back() ? links[i][1] : links[i][0]);
-          extended = true;
-        }
-      if (!extended) return {};
-    }
-    // closed: the last link joins the end back to the start
-    for (std::size_t i = 0; i < links.size(); ++i)
-      if (!used[i]) {
-        const bool closes = (links[i][0] == cycle.back() && links[i][1] == cycle.front()) ||
-                            (links[i][1] == cycle.back() && links[i][0] == cycle.front());
-        if (!closes) return {};
-      }
-    return cycle;
+    return ring_cycle(links);
   }
   // Replaces the tets around edge (d, e) by the two cones, from d and from
   // e, over a triangulation of its ring polygon that has the triangle (or,
@@ -303,10 +282,6 @@ struct FlipMesh {
       if (std::find(q.begin(), q.end(), b) != q.end() && std::find(q.begin(), q.end(), c) != q.end()) return true;
     }
     return false;
-  }
-  static std::uint64_t edge_key(int a, int b) {
-    if (a > b) std::swap(a, b);
-    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
   }
   BackgroundMesh compacted() const {
     BackgroundMesh out;

@@ -3,6 +3,7 @@
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
 #include "curvetet/geometry/predicates.hpp"
+#include "curvetet/volume/mesh_keys.hpp"
 #include "curvetet/volume/tet_amips.hpp"
 
 #include <algorithm>
@@ -467,7 +468,8 @@ class Optimizer {
     // at target in place of the corner.
     // Grow (each tet's faces are looked at once: a face seen strictly stays
     // so), then collect the faces still on the boundary.
-    std::vector<std::pair<int, int>> faces;
+    // (tet, corner, tet across): the across is kept for the final filter.
+    std::vector<std::array<int, 3>> seen;
     for (std::size_t i = 0; i < cavity.size(); ++i) {
       const Tet& q = m_.tets[cavity[i]];
       const bool in_star = std::find(q.begin(), q.end(), v) != q.end();
@@ -478,7 +480,7 @@ class Optimizer {
         Tet c = q;
         c[k] = v;
         if (m_.v.orient_at(c, v, target) > 0) {
-          faces.emplace_back(cavity[i], k);
+          seen.push_back({cavity[i], k, n});
           continue;
         }
         if (n < 0 || cavity.size() >= kMaxCavity) return false; // an input face blocks the target
@@ -486,12 +488,9 @@ class Optimizer {
         cavity.push_back(n);
       }
     }
-    faces.erase(std::remove_if(faces.begin(), faces.end(),
-                               [&](const std::pair<int, int>& f) {
-                                 const int n = across(f.first, f.second);
-                                 return n >= 0 && cavity_mark_[n] == cavity_stamp_;
-                               }),
-                faces.end());
+    std::vector<std::pair<int, int>> faces;
+    for (const auto& [t, k, n] : seen)
+      if (n < 0 || cavity_mark_[n] != cavity_stamp_) faces.emplace_back(t, k);
     double old_max = 0;
     for (int t : cavity) old_max = std::max(old_max, tet_energy(t));
     std::vector<Tet> parts;
@@ -523,7 +522,7 @@ class Optimizer {
     std::vector<int> verts;
     for (const auto& f : tris)
       for (int i = 0; i < 3; ++i) {
-        edges.push_back(key(f[i], f[(i + 1) % 3]));
+        edges.push_back(edge_key(f[i], f[(i + 1) % 3]));
         verts.push_back(f[i]);
       }
     std::sort(edges.begin(), edges.end());
@@ -550,10 +549,6 @@ class Optimizer {
       if (steps + 1 != link.size()) return false;
     }
     return true;
-  }
-  static std::uint64_t key(int a, int b) {
-    if (a > b) std::swap(a, b);
-    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
   }
   // The tet across the face of t opposite its corner k, or -1.
   int across(int t, int k) const {
@@ -688,32 +683,15 @@ class Optimizer {
   // The ring of interior edge (a, b) (its tets `ring`) as a vertex cycle,
   // empty when the fan around the edge is open (a boundary edge).
   std::vector<int> ring_cycle(int a, int b, const std::vector<int>& ring) const {
-    std::vector<std::array<int, 2>> opp;
+    std::vector<std::array<int, 2>> links;
     for (int t : ring) {
       std::array<int, 2> e;
       int j = 0;
       for (int x : m_.tets[t])
         if (x != a && x != b) e[j++] = x;
-      opp.push_back(e);
+      links.push_back(e);
     }
-    std::vector<int> c{opp[0][0], opp[0][1]};
-    std::vector<char> used(opp.size(), 0);
-    used[0] = 1;
-    while (c.size() < opp.size()) {
-      bool found = false;
-      for (std::size_t i = 0; i < opp.size() && !found; ++i)
-        if (!used[i] && (opp[i][0] == c.back() || opp[i][1] == c.back())) {
-          c.push_back(opp[i][0] == c.back() ? opp[i][1] : opp[i][0]);
-          used[i] = found = true;
-        }
-      if (!found) return {};
-    }
-    const auto& last = opp[std::find(used.begin(), used.end(), 0) - used.begin()];
-    const bool closes = (last[0] == c.back() && last[1] == c[0]) || (last[0] == c[0] && last[1] == c.back());
-    std::vector<int> sorted = c;
-    std::sort(sorted.begin(), sorted.end());
-    if (!closes || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return {};
-    return c;
+    return volume::ring_cycle(links);
   }
 
   // Tets of the ring polygon c fanned from c[i], joined to a and to b, all
