@@ -1197,24 +1197,35 @@ std::size_t flip_32_pass(Optimizer& o) {
   return flips;
 }
 
+// Calls fix(t) on each tet of `bad` still alive and at or above `above`;
+// whether any call changed the mesh.
+template <class Fix>
+bool on_still_bad(Optimizer& o, const std::vector<int>& bad, double above, Fix fix) {
+  bool any = false;
+  for (int t : bad)
+    if (o.alive(t) && o.tet_energy(t) >= above) any |= fix(t);
+  return any;
+}
+// Tries fix(x) on the free, rounded corners of t until one succeeds.
+template <class Fix>
+bool on_free_corner(Optimizer& o, int t, Fix fix) {
+  auto& m = o.mesh();
+  for (int x : std::array<int, 4>(m.tets[t]))
+    if (!m.frozen[x] && m.v.exact[x] && fix(x)) return true;
+  return false;
+}
+
 // Where smoothing is blocked (a free vertex hemmed in by its star, e.g.
 // over a sliver input face), removing that vertex may not be: each tet of
 // `bad` still above `threshold` tries to collapse one of its free vertices
 // so that the vertex's star gets a strictly lower worst tet.
 bool remove_blocked_vertices(Optimizer& o, const std::vector<int>& bad, double threshold) {
-  auto& m = o.mesh();
-  bool any = false;
-  for (int t : bad)
-    if (o.alive(t) && o.tet_energy(t) >= threshold)
-      for (int x : std::array<int, 4>(m.tets[t])) {
-        if (m.frozen[x] || !m.v.exact[x]) continue;
-        const auto nb = o.neighbours(x);
-        if (std::any_of(nb.begin(), nb.end(), [&](int u) { return o.collapse(x, u, Optimizer::Keep::lower_max); })) {
-          any = true;
-          break;
-        }
-      }
-  return any;
+  return on_still_bad(o, bad, threshold, [&](int t) {
+    return on_free_corner(o, t, [&](int x) {
+      const auto nb = o.neighbours(x);
+      return std::any_of(nb.begin(), nb.end(), [&](int u) { return o.collapse(x, u, Optimizer::Keep::lower_max); });
+    });
+  });
 }
 
 // Tets of `bad` still above `above`: a free corner moves to where the tet
@@ -1222,20 +1233,13 @@ bool remove_blocked_vertices(Optimizer& o, const std::vector<int>& bad, double t
 // blocks the straight move.
 constexpr double kFractions[] = {1.0, 0.5, 0.25};
 bool relocate_worst(Optimizer& o, const std::vector<int>& bad, double above) {
-  auto& m = o.mesh();
-  bool any = false;
-  for (int t : bad)
-    if (o.alive(t) && o.tet_energy(t) >= above)
-      for (int x : std::array<int, 4>(m.tets[t])) {
-        if (m.frozen[x] || !m.v.exact[x]) continue;
-        const Vec3 p0 = m.v.d[x], target = o.best_corner(t, x);
-        if (std::any_of(std::begin(kFractions), std::end(kFractions),
-                        [&](double f) { return o.relocate_through_cavity(x, p0 + f * (target - p0)); })) {
-          any = true;
-          break;
-        }
-      }
-  return any;
+  return on_still_bad(o, bad, above, [&](int t) {
+    return on_free_corner(o, t, [&](int x) {
+      const Vec3 p0 = o.mesh().v.d[x], target = o.best_corner(t, x);
+      return std::any_of(std::begin(kFractions), std::end(kFractions),
+                         [&](double f) { return o.relocate_through_cavity(x, p0 + f * (target - p0)); });
+    });
+  });
 }
 
 // Tets of `bad` still above `above`: a new vertex, Delaunay-refinement
@@ -1244,13 +1248,10 @@ bool relocate_worst(Optimizer& o, const std::vector<int>& bad, double above) {
 // have its apex (a flat tet between two boundary faces, as on a fillet,
 // needs a point well inside); the centroid.
 bool insert_worst(Optimizer& o, const std::vector<int>& bad, double above) {
-  auto& m = o.mesh();
-  bool any = false;
-  for (int t : bad) {
-    if (!o.alive(t) || o.tet_energy(t) < above) continue;
-    const auto q = m.tets[t];
+  return on_still_bad(o, bad, above, [&](int t) {
+    const auto& m = o.mesh();
     std::array<Vec3, 4> x;
-    for (int k = 0; k < 4; ++k) x[k] = m.v.d[q[k]];
+    for (int k = 0; k < 4; ++k) x[k] = m.v.d[m.tets[t][k]];
     std::vector<Vec3> candidates{circumcentre(x[0], x[1], x[2], x[3])};
     for (int k = 0; k < 4; ++k) {
       if (o.across(t, k) >= 0) continue;
@@ -1262,35 +1263,27 @@ bool insert_worst(Optimizer& o, const std::vector<int>& bad, double above) {
         candidates.push_back((f0 + f1 + f2) / 3 + depth * std::sqrt(2.0 / 3.0) * edge * n);
     }
     candidates.push_back(0.25 * (x[0] + x[1] + x[2] + x[3]));
-    for (const Vec3& p : candidates)
-      if (p.allFinite() && o.alive(t) && o.insert_vertex(t, p)) {
-        any = true;
-        break;
-      }
-  }
-  return any;
+    return std::any_of(candidates.begin(), candidates.end(),
+                       [&](const Vec3& p) { return p.allFinite() && o.alive(t) && o.insert_vertex(t, p); });
+  });
 }
 
 // The worst tets that are left (also those on frozen vertices only) above
 // `above`: a new vertex on one of their interior edges, else inside them.
 bool split_worst(Optimizer& o, const std::vector<int>& bad, double above) {
-  auto& m = o.mesh();
-  bool any = false;
-  for (int t : bad)
-    if (o.alive(t) && o.tet_energy(t) >= above) {
-      // An undone edge split re-creates t under a new id: t is split itself
-      // only when it has no interior edge.
-      const auto q = m.tets[t];
-      bool done = false, interior = false;
-      for (int i = 0; i < 4 && !done; ++i)
-        for (int j = i + 1; j < 4 && !done; ++j)
-          if (const auto ring = o.interior_ring(q[i], q[j]); !ring.empty()) {
-            interior = true;
-            done = o.split_edge(q[i], q[j], ring);
-          }
-      any |= done || (!interior && o.split_tet(t));
-    }
-  return any;
+  return on_still_bad(o, bad, above, [&](int t) {
+    // An undone edge split re-creates t under a new id: t is split itself
+    // only when it has no interior edge.
+    const auto q = o.mesh().tets[t];
+    bool interior = false;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        if (const auto ring = o.interior_ring(q[i], q[j]); !ring.empty()) {
+          interior = true;
+          if (o.split_edge(q[i], q[j], ring)) return true;
+        }
+    return !interior && o.split_tet(t);
+  });
 }
 
 // Worst-tet passes: flips, then smoothing, removal, relocation and (with
