@@ -48,7 +48,11 @@ Command add_tetrahedralize_command(CLI::App& root) {
               r = volume::tetrahedralize(in.mesh, o->tet);
             }
             auto stats_json = [](const volume::FillStats& s) {
-              return nlohmann::json{{"direct", s.direct}, {"background_tets", s.background_tets}, {"bsp_cuts", s.bsp_cuts},
+              return nlohmann::json{{"direct", s.direct},
+                                    {"missing_triangles", s.missing_triangles},
+                                    {"recovered_by_flips", s.recovered_by_flips},
+                                    {"cones", s.cones},
+                                    {"background_tets", s.background_tets}, {"bsp_cuts", s.bsp_cuts},
                                     {"bsp_cells", s.bsp_cells},             {"exact_tets", s.exact_tets},
                                     {"rational_vertices", s.rational_vertices},
                                     {"unrounded_after_first_pass", s.unrounded_after_first_pass},

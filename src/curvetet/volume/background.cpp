@@ -24,27 +24,34 @@ using Delaunay = CGAL::Delaunay_triangulation_3<K, Tds>;
 K::Point_3 cg(const mesh::Vec3& p) { return {p.x(), p.y(), p.z()}; }
 // Conservative: false only when a plane of the tet's faces or the
 // triangle's plane separates them (exact orient3d); callers accept extra
-// pairs (they only cost a later exact test).
-bool may_meet(const std::vector<mesh::Vec3>& p, const std::array<int, 4>& t, const mesh::Tri& f) {
+// pairs (they only cost a later exact test). With `interior`, "meet" means
+// meeting the triangle's relative interior: a plane that the two only share
+// corners of the triangle in (one of them, or an edge) also separates them.
+bool may_meet(const std::vector<mesh::Vec3>& p, const std::array<int, 4>& t, const mesh::Tri& f, bool interior) {
+  auto is_corner = [&](int x) { return x == f[0] || x == f[1] || x == f[2]; };
   for (int k = 0; k < 4; ++k) {
     const int a = t[(k + 1) % 4], b = t[(k + 2) % 4], c = t[(k + 3) % 4];
     const int inner = geometry::orient3d(p[a], p[b], p[c], p[t[k]]);
-    bool all_out = true;
-    for (int x : f)
-      if (x == a || x == b || x == c || geometry::orient3d(p[a], p[b], p[c], p[x]) != -inner) { // inside or on
-        all_out = false;
-        break;
-      }
-    if (all_out) return false;
+    int out = 0, on = 0;
+    for (int x : f) {
+      const int s = x == a || x == b || x == c ? 0 : geometry::orient3d(p[a], p[b], p[c], p[x]);
+      out += s == -inner;
+      on += s == 0;
+    }
+    if (out == 3 || (interior && out > 0 && out + on == 3)) return false;
   }
-  int pos = 0, neg = 0;
+  int pos = 0, neg = 0, corners = 0, off_corner_on = 0;
   for (int x : t) {
-    if (x == f[0] || x == f[1] || x == f[2]) continue; // on the plane
-    const int s = geometry::orient3d(p[f[0]], p[f[1]], p[f[2]], p[x]);
+    const int s = is_corner(x) ? 0 : geometry::orient3d(p[f[0]], p[f[1]], p[f[2]], p[x]);
     pos += s > 0;
     neg += s < 0;
+    corners += is_corner(x);
+    off_corner_on += s == 0 && !is_corner(x);
   }
-  return !(pos == 4 || neg == 4);
+  if (pos == 4 || neg == 4) return false;
+  // Touching the plane only at one or two corners of the triangle misses
+  // its interior.
+  return !(interior && (pos == 0 || neg == 0) && off_corner_on == 0 && corners < 3);
 }
 
 } // namespace
@@ -119,7 +126,8 @@ BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points) {
   return bg;
 }
 
-std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles) {
+std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles,
+                                                     bool interior) {
   const auto& p = bg.points;
   const int nt = static_cast<int>(bg.tets.size());
   std::vector<std::array<int, 4>> computed;
@@ -144,8 +152,8 @@ std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, c
     for (int x : f)
       for (int k = start[x]; k < start[x + 1]; ++k)
         if (seen[star[k]] != j) {
-          seen[star[k]] = j; // contains a corner: meets the triangle
-          stack.push_back(star[k]);
+          seen[star[k]] = j; // contains a corner: meets the closed triangle
+          if (!interior || may_meet(p, bg.tets[star[k]], f, true)) stack.push_back(star[k]);
         }
     while (!stack.empty()) {
       const int t = stack.back();
@@ -154,7 +162,7 @@ std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, c
       for (int o : neighbours[t])
         if (o >= 0 && seen[o] != j) {
           seen[o] = j;
-          if (may_meet(p, bg.tets[o], f)) stack.push_back(o);
+          if (may_meet(p, bg.tets[o], f, interior)) stack.push_back(o);
         }
     }
   }

@@ -41,7 +41,10 @@ BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points);
 // triangle's plane; exact). Found by walking from the stars of each
 // triangle's corners through face-adjacent tets that may meet it (the tets
 // meeting a closed triangle are face-connected), so the cost follows the
-// number of listed pairs, not of overlapping bounding boxes.
-std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles);
+// number of listed pairs, not of overlapping bounding boxes. With
+// `interior`, the same for the triangles' relative interiors (the tets that
+// meet one are face-connected too, and one holds a corner).
+std::vector<std::vector<int>> triangles_meeting_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles,
+                                                     bool interior = false);
 
 } // namespace curvetet::volume

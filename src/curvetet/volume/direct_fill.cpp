@@ -1,9 +1,10 @@
 #include "curvetet/volume/direct_fill.hpp"
 
+#include "curvetet/check/closest_points.hpp"
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
-#include "curvetet/geometry/predicates.hpp"
 #include "curvetet/volume/background.hpp"
+#include "curvetet/volume/cavity_fill.hpp"
 #include "curvetet/volume/exact_mesh.hpp"
 #include "curvetet/volume/face_recovery.hpp"
 #include "curvetet/volume/mesh_keys.hpp"
@@ -11,57 +12,51 @@
 
 #include <algorithm>
 #include <chrono>
-#include <deque>
-#include <limits>
+#include <set>
 #include <unordered_map>
 
 namespace curvetet::volume {
 namespace {
 
-// At most this many missing triangles are worth an attempt at recovery.
-constexpr std::size_t kMaxRecoveries = 1000;
-
-// Winding number of every tet by crossing surface faces from the outside
-// (0): +1 when going against the face's outward normal. Throws if two paths
-// disagree (the surface would not be closed and oriented).
-std::vector<int> windings(const BackgroundMesh& bg, const std::vector<mesh::Tri>& faces,
-                          const std::vector<std::array<int, 4>>& face_of) {
-  const int nt = static_cast<int>(bg.tets.size());
-  constexpr int kUnset = std::numeric_limits<int>::min();
-  std::vector<int> w(nt, kUnset);
-  std::deque<int> queue;
-  // Winding change when entering tet t through its face opposite corner k.
-  auto entering = [&](int t, int k) {
-    const int f = face_of[t][k];
-    if (f < 0) return 0;
-    const auto& tri = faces[f];
-    const auto& p = bg.points;
-    // t lies behind the face (inside) iff its corner k is on the negative side.
-    return geometry::orient3d(p[tri[0]], p[tri[1]], p[tri[2]], p[bg.tets[t][k]]) < 0 ? 1 : -1;
-  };
-  auto assign = [&](int t, int value) {
-    if (w[t] == kUnset) {
-      w[t] = value;
-      queue.push_back(t);
-    } else if (w[t] != value) {
-      throw Error(ExitCode::internal, fmt::format("volume: inconsistent winding numbers at tet {}", t));
-    }
-  };
-  for (int t = 0; t < nt; ++t)
-    for (int k = 0; k < 4; ++k)
-      if (bg.neighbours[t][k] < 0) assign(t, entering(t, k));
-  while (!queue.empty()) {
-    const int t = queue.front();
-    queue.pop_front();
-    for (int k = 0; k < 4; ++k) {
-      const int n = bg.neighbours[t][k];
-      if (n < 0) continue;
-      int j = 0;
-      while (bg.neighbours[n][j] != t) ++j;
-      assign(n, w[t] + entering(n, j));
+// A point one mean edge length h inside each vertex (outside, for the
+// exterior), along its area-weighted normal, if it keeps at least
+// kOffsetClearance × h from the whole surface. On scans the worst Delaunay
+// tets are flat ones between four surface vertices; these points give the
+// tets at the surface an apex off it. One that would crowd another part of
+// the surface is left out (it would make triangles there non-Delaunay).
+constexpr double kOffsetClearance = 0.5;
+// Up to this fraction of missing triangles, flips are tried before offset
+// points are added (above it, on scans, offset points are needed anyway).
+constexpr double kFewMissing = 0.01;
+void append_offset_points(const mesh::SurfaceMesh& surface, bool inward, std::vector<mesh::Vec3>& pts) {
+  const int n = surface.num_vertices();
+  std::vector<mesh::Vec3> normal(n, mesh::Vec3::Zero());
+  std::vector<double> length(n, 0);
+  std::vector<int> count(n, 0);
+  for (const auto& f : surface.faces) {
+    const auto &a = surface.vertices[f[0]], &b = surface.vertices[f[1]], &c = surface.vertices[f[2]];
+    const mesh::Vec3 area = (b - a).cross(c - a);
+    for (int k = 0; k < 3; ++k) {
+      normal[f[k]] += area;
+      length[f[k]] += (surface.vertices[f[(k + 1) % 3]] - surface.vertices[f[k]]).norm();
+      ++count[f[k]];
     }
   }
-  return w;
+  std::vector<mesh::Vec3> candidates;
+  std::vector<double> depth;
+  for (int v = 0; v < n; ++v) {
+    const double h = length[v] / std::max(count[v], 1);
+    const mesh::Vec3 p = surface.vertices[v] + (inward ? -h : h) * normal[v].normalized();
+    if (!p.allFinite()) continue;
+    candidates.push_back(p);
+    depth.push_back(h);
+  }
+  const auto clearance = check::distances_to_surface(surface, candidates);
+  std::set<std::array<double, 3>> taken;
+  for (const auto& p : pts) taken.insert({p.x(), p.y(), p.z()});
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (clearance[i] >= kOffsetClearance * depth[i] && taken.insert({candidates[i].x(), candidates[i].y(), candidates[i].z()}).second)
+      pts.push_back(candidates[i]);
 }
 
 } // namespace
@@ -77,16 +72,14 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
     box = padded_box(surface.vertices, options.box_margin);
     append_box_points(box, pts);
   }
-  if (pts.size() >= static_cast<std::size_t>(kMaxFaceKeyId)) return std::nullopt; // see face_key
-  BackgroundMesh bg = delaunay(pts);
-
-  // Which tet faces are surface triangles; every triangle must be one.
+  // Which tet faces are surface triangles.
   std::unordered_map<std::uint64_t, int> triangle_of;
   triangle_of.reserve(2 * surface.faces.size());
   for (int f = 0; f < surface.num_faces(); ++f) {
     const auto& t = surface.faces[f];
     triangle_of.emplace(face_key(t[0], t[1], t[2]), f);
   }
+  BackgroundMesh bg;
   std::vector<std::array<int, 4>> face_of;
   auto missing_triangles = [&] {
     face_of.assign(bg.tets.size(), {-1, -1, -1, -1});
@@ -104,34 +97,51 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
       if (!found[f]) out.push_back(f);
     return out;
   };
-  auto missing = missing_triangles();
-  // A few missing triangles (flat CAD faces: co-circular points) are
-  // recovered by flips; more mean a surface the layered fill suits.
-  if (!missing.empty() && missing.size() <= kMaxRecoveries) {
-    bg = recover_triangles(bg, surface.faces, missing);
-    const auto before = missing.size();
+  FillStats stats;
+  std::vector<int> missing;
+  // Most missing triangles are recovered by flips.
+  auto tetrahedralize_points = [&](bool recover) {
+    if (pts.size() >= static_cast<std::size_t>(kMaxFaceKeyId)) return false; // see face_key
+    bg = delaunay(pts);
     missing = missing_triangles();
-    logger().debug("volume: {} of {} missing surface triangles recovered by flips", before - missing.size(), before);
-  }
+    stats.missing_triangles = missing.size();
+    stats.recovered_by_flips = 0;
+    if (!recover || missing.empty()) return true;
+    bg = recover_triangles(bg, surface.faces, missing);
+    missing = missing_triangles();
+    stats.recovered_by_flips = stats.missing_triangles - missing.size();
+    logger().debug("volume: {} of {} missing surface triangles recovered by flips", stats.recovered_by_flips,
+                   stats.missing_triangles);
+    return true;
+  };
+  // The surface's own vertices first: on CAD surfaces every triangle, or all
+  // but a few that flips recover, is a Delaunay face. Elsewhere (scans), the
+  // offset points join them (they also keep the tets at the surface off it),
+  // and interior points stand in for the triangles flips cannot recover,
+  // each the apex of a cone that fills part of a cavity.
+  if (!tetrahedralize_points(false)) return std::nullopt;
+  if (!missing.empty() && missing.size() <= kFewMissing * surface.faces.size()) tetrahedralize_points(true);
   if (!missing.empty()) {
-    logger().debug("volume: {} of {} surface triangles are not Delaunay faces: layered fill", missing.size(),
-                   surface.num_faces());
+    append_offset_points(surface, inward, pts);
+    if (!tetrahedralize_points(true)) return std::nullopt;
+  }
+  const auto side_tets = volume::side_tets(bg, surface.faces, face_of, missing, inward);
+  if (!side_tets) {
+    logger().debug("volume: {} surface triangles could not be recovered: layered fill", missing.size());
     return std::nullopt;
   }
-  const int nt = static_cast<int>(bg.tets.size());
+  stats.cones = side_tets->steiner.size();
+  pts.insert(pts.end(), side_tets->steiner.begin(), side_tets->steiner.end());
 
-  const auto w = windings(bg, surface.faces, face_of);
-  const int keep = inward ? 1 : 0;
   exact::ExactTetMesh m;
   for (const auto& p : surface.vertices) m.v.add(p);
   std::vector<int> id(pts.size(), -1);
   for (int v = 0; v < n; ++v) id[v] = v;
-  for (int t = 0; t < nt; ++t) {
-    if (w[t] != keep) continue;
+  for (const auto& t : side_tets->tets) {
     std::array<int, 4> q;
     for (int k = 0; k < 4; ++k) {
-      int& x = id[bg.tets[t][k]];
-      if (x < 0) x = m.v.add(pts[bg.tets[t][k]]);
+      int& x = id[t[k]];
+      if (x < 0) x = m.v.add(pts[t[k]]);
       q[k] = x;
     }
     m.tets.push_back(q);
@@ -140,16 +150,15 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
   m.frozen.assign(m.v.size(), 0);
   for (int v = 0; v < m.v.size(); ++v)
     for (int k = 0; k < 3; ++k)
-      if (v < n || m.v.d[v][k] == box.lo[k] || m.v.d[v][k] == box.hi[k]) m.frozen[v] = 1;
+      if (v < n || (!inward && (m.v.d[v][k] == box.lo[k] || m.v.d[v][k] == box.hi[k]))) m.frozen[v] = 1;
 
-  FillStats stats;
   stats.background_tets = bg.tets.size();
   stats.exact_tets = m.tets.size();
   stats.exact_vertices = m.v.size();
   stats.direct = true;
   stats.seconds_insert = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  logger().debug("volume: every surface triangle is a face: {} of {} tets kept, no Steiner point",
-                 m.tets.size(), bg.tets.size());
+  logger().debug("volume: {} tets to optimize ({} Delaunay tets, {} cones)", m.tets.size(), bg.tets.size(),
+                 stats.cones);
   t0 = std::chrono::steady_clock::now();
   auto out = exact::round_and_optimize(std::move(m), n, options, stats);
   stats.seconds_optimize = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -1,13 +1,15 @@
 #pragma once
 // The fast path of the fill, tried before the offset layer and the BSP
-// insertion of fill_layered(): when the Delaunay tetrahedralization of the
-// surface's own vertices (plus, outward, the box points) already has every
-// surface triangle as one of its faces, its tets on the wanted side of the
-// surface (winding number) tetrahedralize that side exactly, with no Steiner
-// point at all; only the AMIPS optimization (flips, interior splits) is left.
-// On most CAD surfaces this holds: their vertices are spread evenly over
-// flat or gently curved faces (docs/dt_conformity.md). Output contract: the
-// one of fill_layered() (fill.hpp).
+// insertion of fill_layered(): the Delaunay tetrahedralization of the
+// surface's own vertices (plus, outward, the box points). Where it has every
+// surface triangle as a face, its tets on the wanted side of the surface
+// (winding number) tetrahedralize that side exactly, with no Steiner point;
+// on most CAD surfaces it has (docs/dt_conformity.md). Elsewhere, flips
+// recover most missing triangles (face_recovery.hpp) and cones from interior
+// Steiner points fill the cavities around the rest (cavity_fill.hpp). Then
+// the AMIPS optimization (flips, interior insertions) runs as usual.
+// Output contract: the one of fill_layered() (fill.hpp); the caller verifies
+// it (tetrahedralize() falls back to the layered fill if it does not hold).
 #include "curvetet/mesh/linear_tet_mesh.hpp"
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/volume/fill.hpp"
@@ -17,8 +19,8 @@
 
 namespace curvetet::volume {
 
-// nullopt when some surface triangle is not a Delaunay face (the caller then
-// takes the layered path); `stats` is only written on success.
+// nullopt when some cavity cannot be filled by cones (the caller then takes
+// the layered path); `stats` is only written on success.
 std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface, OffsetSide side,
                                                const FillOptions& options = {}, FillStats* stats = nullptr);
 

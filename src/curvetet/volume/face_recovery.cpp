@@ -298,18 +298,17 @@ struct FlipMesh {
 BackgroundMesh recover_triangles(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
                                  const std::vector<int>& missing) {
   FlipMesh fm(bg, surface);
-  // One recovery can open the way for another: sweep while some succeed.
+  // One recovery can open the way for another: sweep again while a sweep
+  // recovers a tenth of those left (each costs ~0.3 ms per failure: on
+  // slivers_abc, sweeps 3 to 11 took 3.3 s for 242 more of 1665).
   std::vector<int> left = missing;
-  for (bool progress = true; progress && !left.empty();) {
-    progress = false;
+  for (std::size_t recovered = left.size(); !left.empty() && 10 * recovered >= left.size();) {
     std::vector<int> still;
     for (int f : left) {
       const auto& t = surface[f];
-      if (fm.recover(t[0], t[1], t[2]))
-        progress = true;
-      else
-        still.push_back(f);
+      if (!fm.recover(t[0], t[1], t[2])) still.push_back(f);
     }
+    recovered = left.size() - still.size();
     left = std::move(still);
   }
   return fm.compacted();

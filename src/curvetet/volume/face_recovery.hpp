@@ -15,7 +15,8 @@
 namespace curvetet::volume {
 
 // Returns bg (neighbours recomputed) after trying to recover the triangles
-// surface[missing[i]]; sweeps again while some sweep recovers one.
+// surface[missing[i]]; sweeps again while a sweep recovers a tenth of those
+// left.
 BackgroundMesh recover_triangles(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
                                  const std::vector<int>& missing);
 

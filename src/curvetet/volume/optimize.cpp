@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
+#include <set>
 #include <cstdint>
 #include <cmath>
 #include <fmt/format.h>
@@ -414,7 +416,7 @@ class Optimizer {
         cavity.push_back(n);
       }
     const int m = add_vertex(p);
-    if (!restar(m, p, cavity)) return false; // m stays starless (dropped on extraction)
+    if (!restar(m, p, cavity, /*search=*/true)) return false; // m stays starless (dropped on extraction)
     ++stats_.splits;
     return true;
   }
@@ -458,8 +460,10 @@ class Optimizer {
   // and is joined to that boundary (a cone from a point seeing a sphere
   // strictly triangulates the ball it bounds; the surface is untouched).
   // Faces through v are inside its star. Kept only if the new tets' worst is
-  // strictly below the cavity's; then the compass search polishes v.
-  bool restar(int v, const Vec3& target, const std::vector<int>& seed) {
+  // strictly below the cavity's, at target or (with `search`) at a point the
+  // compass search finds from there that still sees every face strictly;
+  // then the compass search polishes v.
+  bool restar(int v, const Vec3& target, const std::vector<int>& seed, bool search = false) {
     std::vector<int> cavity = seed;
     ++cavity_stamp_;
     cavity_mark_.resize(m_.tets.size(), 0);
@@ -494,15 +498,24 @@ class Optimizer {
     double old_max = 0;
     for (int t : cavity) old_max = std::max(old_max, tet_energy(t));
     std::vector<Tet> parts;
+    bool better = true;
     for (auto [t, k] : faces) {
       Tet c = m_.tets[t];
       c[k] = v;
-      if (!(energy_at(c, v, target) < old_max)) return false; // before the costlier sphere check
+      better = better && energy_at(c, v, target) < old_max;
+      if (!better && !search) return false; // before the costlier sphere check
       parts.push_back(c);
     }
+    // An insertion may move its point within the cone's kernel first.
+    Vec3 at = target;
+    if (!better && !(descend_max(parts, v, at, [&](const Vec3& q) {
+                       return std::all_of(parts.begin(), parts.end(),
+                                          [&](const Tet& c) { return m_.v.orient_at(c, v, q) > 0; });
+                     }) < old_max))
+      return false;
     if (!bounds_sphere(faces)) return false;
     for (int t : cavity) kill(t);
-    move(v, target);
+    move(v, at);
     for (const Tet& c : parts) add(c);
     compass_search(v); // only ever lowers the star's worst
     return true;
@@ -874,29 +887,43 @@ class Optimizer {
   bool compass_search(int v) {
     if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || vt_[v].empty()) return false;
     Vec3 p = m_.v.d[v];
-    double len = 0;
-    for (int t : vt_[v])
-      for (int x : m_.tets[t]) len += (m_.v.d[x] - p).norm();
-    len /= 3.0 * static_cast<double>(vt_[v].size());
-    if (!(len > 0)) return false;
-    auto max_at = [&](const Vec3& q, int* worst) {
-      double m = 0;
-      for (int t : vt_[v]) {
-        const double e = energy_at(m_.tets[t], v, q);
-        if (e > m) {
-          m = e;
-          if (worst) *worst = t;
-        }
+    std::vector<Tet> star;
+    for (int t : vt_[v]) star.push_back(m_.tets[t]);
+    const double before = max_energy_at(star, v, p, nullptr);
+    const double after = descend_max(star, v, p, [&](const Vec3& q) { return star_positive_at(v, q); });
+    if (!(after < before)) return false;
+    move(v, p);
+    ++stats_.smooths;
+    return true;
+  }
+  double max_energy_at(const std::vector<Tet>& tets, int v, const Vec3& q, int* worst) const {
+    double m = 0;
+    for (int i = 0; i < static_cast<int>(tets.size()); ++i) {
+      const double e = energy_at(tets[i], v, q);
+      if (e > m) {
+        m = e;
+        if (worst) *worst = i;
       }
-      return m;
-    };
-    int worst = -1;
-    double best = max_at(p, &worst);
-    bool moved = false;
+    }
+    return m;
+  }
+  // Compass search, with the worst tet's descent direction tried first, for
+  // a position p of v in `tets` (all holding v) with a lower worst energy;
+  // valid(q) must hold at every position taken. Returns the worst energy at
+  // the final p.
+  template <class Valid>
+  double descend_max(const std::vector<Tet>& tets, int v, Vec3& p, Valid valid) const {
+    double len = 0;
+    for (const Tet& t : tets)
+      for (int x : t)
+        if (x != v) len += (m_.v.d[x] - p).norm();
+    len /= 3.0 * static_cast<double>(tets.size());
+    int worst = 0;
+    double best = max_energy_at(tets, v, p, &worst);
+    if (!(len > 0)) return best;
     for (double step = 0.2 * len; step > 1e-3 * len;) {
-      // descent direction of the worst tet's energy
       Vec3 g = Vec3::Zero();
-      energy_gradient_at(m_.tets[worst], v, p, g);
+      energy_gradient_at(tets[worst], v, p, g);
       std::array<Vec3, 7> dirs = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(),
                                   Vec3::UnitZ(), -Vec3::UnitZ(), Vec3::Zero()};
       if (g.allFinite() && g.norm() > 0) dirs[6] = -g.normalized();
@@ -904,21 +931,17 @@ class Optimizer {
       for (int i = 6; i >= 0 && !improved; --i) {
         if (dirs[i].isZero()) continue;
         const Vec3 q = p + step * dirs[i];
-        int w = -1;
-        const double e = max_at(q, &w);
-        if (!(e < best) || !star_positive_at(v, q)) continue;
+        int w = 0;
+        const double e = max_energy_at(tets, v, q, &w);
+        if (!(e < best) || !valid(q)) continue;
         p = q;
         best = e;
         worst = w;
-        improved = moved = true;
+        improved = true;
       }
       if (!improved) step *= 0.5;
     }
-    if (moved) {
-      move(v, p);
-      ++stats_.smooths;
-    }
-    return moved;
+    return best;
   }
 
   ExactTetMesh m_;
@@ -1293,7 +1316,14 @@ bool split_worst(Optimizer& o, const std::vector<int>& bad, double above) {
 // neither that maximum nor the overall one, or once every tet is below
 // kGoodMaxEnergy (more passes there only polish the bulk: cad_fillet3 spent
 // 2 s taking 3.2 to 2.8).
+// With `insert` (the Delaunay fill, whose bad tets mostly have no free
+// vertex), the passes aim at every tet within `focus` of the maximum, or
+// above focus × kBroadEnergy; a tet that several passes could not improve
+// is set aside for the others, then retried once; they stop on the same
+// kind of signs of diminishing returns, or when the tries exceed the tet
+// count.
 constexpr double kGoodMaxEnergy = 3.5;
+constexpr double kBroadEnergy = 12;
 struct WorstPassPlan {
   int passes = 8;
   double focus = 0.5;
@@ -1306,35 +1336,100 @@ void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
   auto has_free_vertex = [&](int t) {
     return std::any_of(m.tets[t].begin(), m.tets[t].end(), [&](int x) { return !m.frozen[x]; });
   };
+  // With insertions, a tet that kMaxTries whole passes left above their
+  // threshold is set aside, so that the passes go on down the tail behind
+  // it (known by its corners: an undone operation re-creates a tet under a
+  // new id).
+  constexpr int kMaxTries = 3;
+  std::map<Tet, int> failures;
+  std::set<Tet> set_aside;
+  bool retried = false;
+  constexpr int kPolishPasses = 3;
+  int polish = 0;
+  auto corners = [&](int t) {
+    Tet q = m.tets[t];
+    std::sort(q.begin(), q.end());
+    return q;
+  };
+  int stalled = 0;
+  std::size_t tried_tets = 0;
+  const std::size_t budget = o.num_alive();
+  double best_open = std::numeric_limits<double>::infinity();
   double previous = std::numeric_limits<double>::infinity(), previous_all = previous;
   for (int pass = 0; pass < plan.passes; ++pass) {
-    double mx = 0, mx_all = 0;
+    // mx: over tets with a free vertex (those smoothing can change);
+    // mx_open: over all, those set aside excepted.
+    double mx = 0, mx_all = 0, mx_open = 0;
+    std::vector<char> stuck(o.num_tets(), 0);
     for (int t = 0; t < o.num_tets(); ++t)
       if (o.alive(t)) {
-        mx_all = std::max(mx_all, o.tet_energy(t));
-        if (has_free_vertex(t)) mx = std::max(mx, o.tet_energy(t));
+        const double e = o.tet_energy(t);
+        mx_all = std::max(mx_all, e);
+        stuck[t] = e >= 2.0 && !set_aside.empty() && set_aside.count(corners(t));
+        if (stuck[t]) continue;
+        mx_open = std::max(mx_open, e);
+        if (has_free_vertex(t)) mx = std::max(mx, e);
       }
-    if (!(mx < previous) && !(mx_all < previous_all)) break;
-    if (mx_all < kGoodMaxEnergy) break;
-    // Diminishing returns: a pass that took the maximum down by less than
-    // plan.min_gain (relative) is the last, once it is reasonable.
-    if (mx_all < 1.5 * kGoodMaxEnergy && mx_all > (1 - plan.min_gain) * previous_all) break;
+    if (plan.insert) {
+      // A budget of as many tries as the mesh has tets: where thousands of
+      // tets stay bad (needle input faces) passes would go on for long.
+      if (mx_all < kGoodMaxEnergy || tried_tets > budget) break;
+      stalled = mx_open < best_open ? 0 : stalled + 1;
+      best_open = std::min(best_open, mx_open);
+      // Also done after kPolishPasses passes with the rest well below the
+      // tets set aside (polishing it lowers the maximum only by the way), or
+      // once a pass took a reasonable maximum down by less than min_gain.
+      polish = mx_open < plan.focus * mx_all ? polish + 1 : 0;
+      const bool done = stalled == 3 || mx_open < kGoodMaxEnergy || polish > kPolishPasses ||
+                        (mx_all < 1.5 * kGoodMaxEnergy && mx_all > (1 - plan.min_gain) * previous_all);
+      if (done && (retried || set_aside.empty())) break;
+      if (done) {
+        // The tets set aside get another chance in their new surroundings.
+        retried = true;
+        set_aside.clear();
+        failures.clear();
+        stalled = polish = 0;
+        mx_open = mx_all;
+        best_open = std::numeric_limits<double>::infinity();
+        std::fill(stuck.begin(), stuck.end(), 0);
+      }
+    } else {
+      if (!(mx < previous) && !(mx_all < previous_all)) break;
+      if (mx_all < kGoodMaxEnergy) break;
+    }
     previous = mx;
     previous_all = mx_all;
-    const double threshold = std::max(2.0, plan.focus * (mx > 0 ? mx : mx_all));
+    // Insertions reach tets without a free vertex too: they aim at all, and
+    // at every tet above kBroadEnergy at once.
+    const double target = plan.insert ? std::min(mx_open, kBroadEnergy) : mx > 0 ? mx : mx_open;
+    const double threshold = std::max(2.0, plan.focus * target);
     std::vector<int> bad;
     for (int t = 0; t < o.num_tets(); ++t)
-      if (o.alive(t) && o.tet_energy(t) >= threshold) bad.push_back(t);
+      if (o.alive(t) && o.tet_energy(t) >= threshold && !stuck[t]) bad.push_back(t);
+    std::set<Tet> tried;
+    if (plan.insert)
+      for (int t : bad) tried.insert(corners(t));
+    tried_tets += bad.size();
     bool any = flip_pass(o, threshold) > 0;
     for (int t : bad)
       if (o.alive(t))
         for (int x : std::array<int, 4>(m.tets[t])) any |= o.smooth_max(x);
     any |= remove_blocked_vertices(o, bad, threshold);
-    const double above = std::max(threshold, plan.focus * mx_all);
+    const double above = plan.insert ? threshold : std::max(threshold, plan.focus * mx_open);
     any |= relocate_worst(o, bad, above);
     if (plan.splits && plan.insert) any |= insert_worst(o, bad, above);
     if (plan.splits) any |= split_worst(o, bad, above);
-    logger().debug("volume: worst pass {}: max {:.4g} over tets with a free vertex, {} tets above {:.4g}, changed: {}", pass, mx, bad.size(), threshold, any);
+    if (plan.insert) {
+      for (int t = 0; t < o.num_tets(); ++t)
+        if (o.alive(t) && o.tet_energy(t) >= above && tried.count(corners(t)) &&
+            ++failures[corners(t)] == kMaxTries) {
+          set_aside.insert(corners(t));
+          any = true;
+        }
+    }
+    logger().debug("volume: worst pass {}: max {:.4g}, {:.4g} with a free vertex, {:.4g} not set aside ({}); {} tets "
+                   "above {:.4g}, changed: {}",
+                   pass, mx_all, mx, mx_open, set_aside.size(), bad.size(), threshold, any);
     if (!any) break;
   }
 }
@@ -1360,11 +1455,12 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
   std::size_t left = o.round_pass();
   stats.unrounded_after_first_pass = left;
   phase("round");
-  // Without a free vertex (the Delaunay fill), collapses and smoothing have
-  // nothing to move: one round of flips, then the worst-tet passes insert.
+  // Without a free vertex (the Delaunay fill: none but the few centres of
+  // its cones), collapses and smoothing have next to nothing to move: one
+  // round of flips, then the worst-tet passes insert.
   const auto& fr = o.mesh().frozen;
-  const bool all_frozen = std::find(fr.begin(), fr.end(), 0) == fr.end();
-  const int rounds = all_frozen ? std::min(options.optimize_rounds, 1) : options.optimize_rounds;
+  const bool mostly_frozen = stats.direct || std::find(fr.begin(), fr.end(), 0) == fr.end();
+  const int rounds = mostly_frozen ? std::min(options.optimize_rounds, 1) : options.optimize_rounds;
   for (int round = 0; round < rounds; ++round) {
     collapse_pass(o, false, collapse_failed);
     phase("collapse");
@@ -1394,7 +1490,7 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
   // refinement: more passes, each on the tets near the current worst.
   WorstPassPlan plan;
   plan.splits = options.coarsen_energy <= 0;
-  if (all_frozen) {
+  if (mostly_frozen) {
     plan.passes = 30;
     plan.focus = 0.75;
     plan.min_gain = 0.03;

@@ -40,31 +40,42 @@ void require_ok(const TetMeshCheck& c, const char* part) {
 TetrahedralizeResult tetrahedralize(const mesh::SurfaceMesh& surface, const TetrahedralizeOptions& options) {
   TetrahedralizeResult r;
   const int n = surface.num_vertices();
-  // The fast path first; the layer and the BSP where it does not apply.
-  auto fill = [&](OffsetSide side, FillStats* stats, int* singular) {
-    if (options.direct)
-      if (auto m = fill_direct(surface, side, options.fill, stats)) return std::move(*m);
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto layered = extrude(surface, side, options.layer_thickness, singular);
-    r.seconds_extrusion += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return fill_layered(layered, options.fill, stats);
-  };
-  r.mesh = fill(OffsetSide::inward, &r.interior, &r.singular_inward);
-  r.interior_check = verify_tet_mesh(r.mesh, surface.faces);
-  require_ok(r.interior_check, "interior");
-  if (!options.exterior) return r;
-
-  auto ext = fill(OffsetSide::outward, &r.exterior, &r.singular_outward);
   std::vector<mesh::Tri> reversed;
   reversed.reserve(surface.faces.size());
   for (const auto& f : surface.faces) reversed.push_back({f[0], f[2], f[1]});
-  Box box{ext.vertices[0], ext.vertices[0]};
-  for (const auto& p : ext.vertices) {
-    box.lo = box.lo.cwiseMin(p);
-    box.hi = box.hi.cwiseMax(p);
-  }
-  r.exterior_check = verify_tet_mesh(ext, reversed, box);
-  require_ok(r.exterior_check, "exterior");
+  auto check = [&](OffsetSide side, const mesh::LinearTetMesh& m) {
+    if (side == OffsetSide::inward) return verify_tet_mesh(m, surface.faces);
+    Box box{m.vertices[0], m.vertices[0]};
+    for (const auto& p : m.vertices) {
+      box.lo = box.lo.cwiseMin(p);
+      box.hi = box.hi.cwiseMax(p);
+    }
+    return verify_tet_mesh(m, reversed, box);
+  };
+  // The fast path first (its result is used only if it verifies, like every
+  // result); the layer and the BSP where it does not apply.
+  auto fill = [&](OffsetSide side, FillStats* stats, int* singular, TetMeshCheck* verified) {
+    const char* part = side == OffsetSide::inward ? "interior" : "exterior";
+    if (options.direct)
+      if (auto m = fill_direct(surface, side, options.fill, stats)) {
+        *verified = check(side, *m);
+        if (verified->ok()) return std::move(*m);
+        logger().warn("volume: the Delaunay fill of the {} fails verification ({}); taking the layered fill", part,
+                      verified->text());
+      }
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto layered = extrude(surface, side, options.layer_thickness, singular);
+    r.seconds_extrusion += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    *stats = FillStats{};
+    auto m = fill_layered(layered, options.fill, stats);
+    *verified = check(side, m);
+    require_ok(*verified, part);
+    return m;
+  };
+  r.mesh = fill(OffsetSide::inward, &r.interior, &r.singular_inward, &r.interior_check);
+  if (!options.exterior) return r;
+
+  auto ext = fill(OffsetSide::outward, &r.exterior, &r.singular_outward, &r.exterior_check);
   // Merge: both parts share the surface vertices [0, n).
   const int base = r.mesh.num_vertices() - n;
   for (int v = n; v < ext.num_vertices(); ++v) r.mesh.vertices.push_back(ext.vertices[v]);

@@ -1,15 +1,16 @@
 #pragma once
 // `curvetet tetrahedralize`: boundary-preserving tetrahedralization of a
-// closed surface (issue 6). Each side is filled by fill_direct() when the
-// Delaunay tetrahedralization of the surface's vertices has every surface
-// triangle, else by fill_layered() on the offset of the shell's one-sided
+// closed surface (issue 6). Each side is filled by fill_direct() (the
+// Delaunay tetrahedralization of the surface's vertices, flips and interior
+// cones for the triangles it lacks) when that succeeds and its result
+// verifies, else by fill_layered() on the offset of the shell's one-sided
 // extrusion (shell::extrude_one_sided).
 //
 // Output: vertices [0, n) are the surface's vertices bit for bit; tag 1 = the
 // interior (bounded exactly by the surface faces), tag 2 = with `exterior`,
 // the region between the surface and a box (bounded by the reversed surface
-// faces and the box). verify_tet_mesh() has been run on each part; a failure
-// throws Error(internal).
+// faces and the box). verify_tet_mesh() has been run on each part; a layered
+// fill that fails it throws Error(internal).
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/mesh/linear_tet_mesh.hpp"
 #include "curvetet/volume/fill.hpp"
