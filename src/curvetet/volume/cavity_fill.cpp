@@ -315,9 +315,13 @@ std::optional<SideTets> side_tets(const BackgroundMesh& bg, const std::vector<me
       if (kernel.point) apex_of[key] = *kernel.point;
       if (!kernel.point) {
         // The kept tets behind the faces that block the centre join the
-        // cavity; blocking surface triangles cannot be helped.
+        // cavity. Where only surface triangles block it (a kernel too thin
+        // for a double point: thin wedges), all the kept tets around do:
+        // farther from the wedge's edge, its kernel is wider.
         bool helped = false;
         for (int i : kernel.blocking)
+          if (const int t = boundary.across[piece[i]]; t >= 0) helped = removed[t] = 1;
+        for (int i = 0; i < static_cast<int>(piece.size()) && !helped; ++i)
           if (const int t = boundary.across[piece[i]]; t >= 0) helped = removed[t] = 1;
         if (!helped) {
           logger().debug("volume: a cavity piece of {} faces has no kernel point", piece.size());
