@@ -49,6 +49,7 @@ Command add_tetrahedralize_command(CLI::App& root) {
             }
             auto stats_json = [](const volume::FillStats& s) {
               return nlohmann::json{{"direct", s.direct},
+                                    {"offset_points", s.offset_points},
                                     {"missing_triangles", s.missing_triangles},
                                     {"recovered_by_flips", s.recovered_by_flips},
                                     {"cones", s.cones},

@@ -122,7 +122,9 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
   if (!tetrahedralize_points(false)) return std::nullopt;
   if (!missing.empty() && missing.size() <= kFewMissing * surface.faces.size()) tetrahedralize_points(true);
   if (!missing.empty()) {
+    const auto before = pts.size();
     append_offset_points(surface, inward, pts);
+    stats.offset_points = pts.size() - before;
     if (!tetrahedralize_points(true)) return std::nullopt;
   }
   const auto side_tets = volume::side_tets(bg, surface.faces, face_of, missing, inward);

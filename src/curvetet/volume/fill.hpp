@@ -48,10 +48,11 @@ struct FillStats {
   double seconds_insert = 0, seconds_layer = 0, seconds_optimize = 0;
   double max_amips = 0, mean_amips = 0;
   bool direct = false; // filled by fill_direct() (no layer, no BSP)
-  // fill_direct(): surface triangles that were not Delaunay faces, how many
-  // of those flips recovered, and the cones (interior Steiner points) that
-  // stand in for the rest.
-  std::size_t missing_triangles = 0, recovered_by_flips = 0, cones = 0;
+  // fill_direct(): the offset points added to the surface's vertices (0 on
+  // most CAD surfaces), the surface triangles that were then not Delaunay
+  // faces, how many of those flips recovered, and the cones (interior
+  // Steiner points) that stand in for the rest.
+  std::size_t offset_points = 0, missing_triangles = 0, recovered_by_flips = 0, cones = 0;
 };
 
 mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& options = {}, FillStats* stats = nullptr);

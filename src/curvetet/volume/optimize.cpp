@@ -1396,6 +1396,7 @@ void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
     } else {
       if (!(mx < previous) && !(mx_all < previous_all)) break;
       if (mx_all < kGoodMaxEnergy) break;
+      if (mx_all < 1.5 * kGoodMaxEnergy && mx_all > (1 - plan.min_gain) * previous_all) break;
     }
     previous = mx;
     previous_all = mx_all;
