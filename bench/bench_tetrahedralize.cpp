@@ -1,12 +1,14 @@
 // Boundary-preserving tetrahedralization time (issue 6): `volume::tetrahedralize`
 // on real meshes from ~0.5k to ~100k faces, by whichever fill applies (the
 // Delaunay fast path or the layered one: extrusion + exact insertion + layer
-// + rounding/optimization), and on two CAD parts by each fill in turn.
+// + rounding/optimization), and on two CAD parts and a scan by each fill in
+// turn.
 // Target: within 5x of `tetgen -pYq` (bench/compare_tetgen.py measures both
 // on every good mesh).
 // Run: build/bench/bench_tetrahedralize [--benchmark_filter=...]
 // Counters: faces, output tets, per-stage seconds (extrusion, insertion,
-// layer, optimization), max AMIPS energy, direct (1: the fast path ran).
+// layer, optimization), max AMIPS energy, direct (1: the fast path ran),
+// offset_points and cones (the fast path's points inside the surface).
 #include "curvetet/io/read_surface.hpp"
 #include "curvetet/volume/tetrahedralize.hpp"
 
@@ -34,6 +36,8 @@ void BM_Tetrahedralize(benchmark::State& state, const std::string& name, bool di
   state.counters["s_optimize"] = r.interior.seconds_optimize;
   state.counters["max_amips"] = r.interior.max_amips;
   state.counters["direct"] = r.interior.direct ? 1 : 0;
+  state.counters["offset_points"] = r.interior.offset_points;
+  state.counters["cones"] = r.interior.cones;
   state.counters["faces_per_s"] = benchmark::Counter(input.num_faces(), benchmark::Counter::kIsIterationInvariantRate);
 }
 
@@ -50,7 +54,7 @@ BENCHMARK_CAPTURE(BM_Tetrahedralize, armadillo_52k, std::string("armadillo_cgal.
 BENCHMARK_CAPTURE(BM_Tetrahedralize, nefertiti_100k, std::string("nefertiti.off"))
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
-// The same CAD parts by each fill.
+// The same models by each fill: CAD parts, and a scan (cones).
 BENCHMARK_CAPTURE(BM_Tetrahedralize, knot2_12k_direct, std::string("knot2_two_components.off"), true)
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
@@ -61,6 +65,9 @@ BENCHMARK_CAPTURE(BM_Tetrahedralize, boolean_29k_direct, std::string("cad_boolea
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 BENCHMARK_CAPTURE(BM_Tetrahedralize, boolean_29k_layered, std::string("cad_boolean.off"), false)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(BM_Tetrahedralize, bunny_7k_layered, std::string("bunny_libigl.off"), false)
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
