@@ -23,12 +23,13 @@ namespace {
 // kOffsetClearance × h from the whole surface. On scans the worst Delaunay
 // tets are flat ones between four surface vertices; these points give the
 // tets at the surface an apex off it. One that would crowd another part of
-// the surface is left out (it would make triangles there non-Delaunay).
+// the surface is left out (it would make triangles there non-Delaunay), and
+// outward, one not strictly inside the box (whose sides must stay the hull).
 constexpr double kOffsetClearance = 0.5;
 // Up to this fraction of missing triangles, flips are tried before offset
 // points are added (above it, on scans, offset points are needed anyway).
 constexpr double kFewMissing = 0.01;
-void append_offset_points(const mesh::SurfaceMesh& surface, bool inward, std::vector<mesh::Vec3>& pts) {
+void append_offset_points(const mesh::SurfaceMesh& surface, bool inward, const Box& box, std::vector<mesh::Vec3>& pts) {
   const int n = surface.num_vertices();
   std::vector<mesh::Vec3> normal(n, mesh::Vec3::Zero());
   std::vector<double> length(n, 0);
@@ -47,7 +48,8 @@ void append_offset_points(const mesh::SurfaceMesh& surface, bool inward, std::ve
   for (int v = 0; v < n; ++v) {
     const double h = length[v] / std::max(count[v], 1);
     const mesh::Vec3 p = surface.vertices[v] + (inward ? -h : h) * normal[v].normalized();
-    if (!p.allFinite()) continue;
+    const bool in_box = (p.array() > box.lo.array()).all() && (p.array() < box.hi.array()).all();
+    if (!p.allFinite() || (!inward && !in_box)) continue;
     candidates.push_back(p);
     depth.push_back(h);
   }
@@ -123,7 +125,7 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
   if (!missing.empty() && missing.size() <= kFewMissing * surface.faces.size()) tetrahedralize_points(true);
   if (!missing.empty()) {
     const auto before = pts.size();
-    append_offset_points(surface, inward, pts);
+    append_offset_points(surface, inward, box, pts);
     stats.offset_points = pts.size() - before;
     if (!tetrahedralize_points(true)) return std::nullopt;
   }
