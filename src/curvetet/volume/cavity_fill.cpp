@@ -250,39 +250,17 @@ std::uint64_t mix(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-} // namespace
-
-std::optional<SideTets> side_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
-                                  const std::vector<std::array<int, 4>>& face_of, const std::vector<int>& missing,
-                                  bool inside) {
+// The kept tets of side `keep` and the cones over the cavity's pieces, the
+// cavity growing until every piece has a kernel point: around edges where
+// two of its sectors meet, the tets there; behind the faces that hide a
+// piece's centre, the kept tets there (first those without a surface face
+// when `off_surface_first`).
+std::optional<SideTets> cone_cavity(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
+                                    const std::vector<std::array<int, 4>>& face_of, const std::vector<int>& missing,
+                                    std::vector<char> removed, const std::vector<int>& w, int keep,
+                                    bool off_surface_first) {
   const int nt = static_cast<int>(bg.tets.size());
-  std::vector<char> removed(nt, 0);
-  if (!missing.empty()) {
-    std::vector<mesh::Tri> tris;
-    tris.reserve(missing.size());
-    for (int f : missing) tris.push_back(surface[f]);
-    const auto meeting = triangles_meeting_tets(bg, tris, /*interior=*/true);
-    for (int t = 0; t < nt; ++t) removed[t] = !meeting[t].empty();
-  }
-  std::vector<int> w;
-  if (!wind(bg, surface, face_of, removed, w)) {
-    logger().debug("volume: inconsistent winding numbers around the cavity");
-    return std::nullopt;
-  }
-  const int keep = inside ? 1 : 0;
   SideTets out;
-  auto kept_tets = [&] {
-    for (int t = 0; t < nt; ++t)
-      if (!removed[t] && w[t] == keep) out.tets.push_back(bg.tets[t]);
-  };
-  if (missing.empty()) {
-    kept_tets();
-    return out;
-  }
-
-  // Where two sectors of the cavity meet at an edge, the tets around it
-  // join the cavity; where a piece has no kernel point, the kept tets it
-  // borders do.
   const int np = static_cast<int>(bg.points.size());
   std::unordered_map<std::uint64_t, mesh::Vec3> apex_of; // by piece (its faces' keys, mixed)
   for (int round = 0;; ++round) {
@@ -318,9 +296,14 @@ std::optional<SideTets> side_tets(const BackgroundMesh& bg, const std::vector<me
         // cavity. Where only surface triangles block it (a kernel too thin
         // for a double point: thin wedges), all the kept tets around do:
         // farther from the wedge's edge, its kernel is wider.
+        auto on_surface = [&](int t) {
+          return std::any_of(face_of[t].begin(), face_of[t].end(), [](int f) { return f >= 0; });
+        };
         bool helped = false;
-        for (int i : kernel.blocking)
-          if (const int t = boundary.across[piece[i]]; t >= 0) helped = removed[t] = 1;
+        for (int pass = off_surface_first ? 0 : 1; pass < 2 && !helped; ++pass)
+          for (int i : kernel.blocking)
+            if (const int t = boundary.across[piece[i]]; t >= 0 && (pass == 1 || !on_surface(t)))
+              helped = removed[t] = 1;
         for (int i = 0; i < static_cast<int>(piece.size()) && !helped; ++i)
           if (const int t = boundary.across[piece[i]]; t >= 0) helped = removed[t] = 1;
         if (!helped) {
@@ -335,13 +318,48 @@ std::optional<SideTets> side_tets(const BackgroundMesh& bg, const std::vector<me
       for (int i : piece) cones.push_back({faces[i][0], faces[i][1], faces[i][2], id});
     }
     if (grown) continue;
-    kept_tets();
+    for (int t = 0; t < nt; ++t)
+      if (!removed[t] && w[t] == keep) out.tets.push_back(bg.tets[t]);
     out.tets.insert(out.tets.end(), cones.begin(), cones.end());
     logger().debug("volume: {} tets around {} missing triangles replaced by {} cones of {} tets ({} growth rounds)",
                    std::count(removed.begin(), removed.end(), 1), missing.size(), split.pieces.size(), cones.size(),
                    round);
     return out;
   }
+}
+
+} // namespace
+
+std::optional<SideTets> side_tets(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
+                                  const std::vector<std::array<int, 4>>& face_of, const std::vector<int>& missing,
+                                  bool inside) {
+  const int nt = static_cast<int>(bg.tets.size());
+  std::vector<char> removed(nt, 0);
+  if (!missing.empty()) {
+    std::vector<mesh::Tri> tris;
+    tris.reserve(missing.size());
+    for (int f : missing) tris.push_back(surface[f]);
+    const auto meeting = triangles_meeting_tets(bg, tris, /*interior=*/true);
+    for (int t = 0; t < nt; ++t) removed[t] = !meeting[t].empty();
+  }
+  std::vector<int> w;
+  if (!wind(bg, surface, face_of, removed, w)) {
+    logger().debug("volume: inconsistent winding numbers around the cavity");
+    return std::nullopt;
+  }
+  const int keep = inside ? 1 : 0;
+  if (missing.empty()) {
+    SideTets out;
+    for (int t = 0; t < nt; ++t)
+      if (!removed[t] && w[t] == keep) out.tets.push_back(bg.tets[t]);
+    return out;
+  }
+  // Growing behind whatever blocks suits most pieces; where that makes a
+  // piece creep along the surface (each kept tet with a surface face brings
+  // it in: sliver_anchor's pieces did past 24 rounds), growing away from
+  // the surface first does.
+  if (auto out = cone_cavity(bg, surface, face_of, missing, removed, w, keep, false)) return out;
+  return cone_cavity(bg, surface, face_of, missing, removed, w, keep, true);
 }
 
 } // namespace curvetet::volume

@@ -13,7 +13,9 @@
 //    kept tets of that side and by surface triangles. Each closed piece of
 //    that boundary is coned from one Steiner point that sees every face of
 //    the piece (a point of its kernel, the Chebyshev centre found by an exact
-//    LP), checked by exact orient3d on the rounded point.
+//    LP), checked by exact orient3d on the rounded point;
+//  - a piece without one grows: the kept tets behind the faces that hide its
+//    centre join the cavity (two growth orders are tried, see side_tets).
 // A cone over a closed surface from a point that sees every face strictly
 // tetrahedralizes its inside exactly once, so the result is exact.
 #include "curvetet/volume/background.hpp"
