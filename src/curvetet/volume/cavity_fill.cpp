@@ -80,9 +80,8 @@ struct CavityBoundary {
   std::vector<int> across;
 };
 CavityBoundary cavity_boundary(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
-                                       const std::vector<std::array<int, 4>>& face_of,
-                                       const std::vector<int>& missing, const std::vector<char>& removed,
-                                       const std::vector<int>& w, int keep) {
+                               const std::vector<std::array<int, 4>>& face_of, const std::vector<int>& missing,
+                               const std::vector<char>& removed, const std::vector<int>& w, int keep) {
   const auto& p = bg.points;
   CavityBoundary out;
   for (std::size_t r = 0; r < bg.tets.size(); ++r) {
