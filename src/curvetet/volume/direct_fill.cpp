@@ -131,7 +131,9 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
   }
   const auto side_tets = volume::side_tets(bg, surface.faces, face_of, missing, inward);
   if (!side_tets) {
-    logger().debug("volume: {} surface triangles could not be recovered: layered fill", missing.size());
+    logger().info("volume: {} surface triangles are not Delaunay faces and no cone closes around them: "
+                  "taking the layered fill (slower)",
+                  missing.size());
     return std::nullopt;
   }
   stats.cones = side_tets->steiner.size();

@@ -59,7 +59,11 @@ TetrahedralizeResult tetrahedralize(const mesh::SurfaceMesh& surface, const Tetr
     if (options.direct)
       if (auto m = fill_direct(surface, side, options.fill, stats)) {
         *verified = check(side, *m);
-        if (verified->ok()) return std::move(*m);
+        if (verified->ok()) {
+          logger().info("volume: {} filled from the Delaunay tetrahedralization ({} offset points, {} cones)", part,
+                        stats->offset_points, stats->cones);
+          return std::move(*m);
+        }
         logger().warn("volume: the Delaunay fill of the {} fails verification ({}); taking the layered fill", part,
                       verified->text());
       }
