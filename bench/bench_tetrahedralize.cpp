@@ -41,35 +41,33 @@ void BM_Tetrahedralize(benchmark::State& state, const std::string& name, bool di
   state.counters["faces_per_s"] = benchmark::Counter(input.num_faces(), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-BENCHMARK_CAPTURE(BM_Tetrahedralize, thingi_552, std::string("thingi10k_288351.off"))
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
-BENCHMARK_CAPTURE(BM_Tetrahedralize, bunny_7k, std::string("bunny_libigl.off"))->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_Tetrahedralize, fandisk_13k, std::string("fandisk_cgal.off"))
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
-BENCHMARK_CAPTURE(BM_Tetrahedralize, armadillo_52k, std::string("armadillo_cgal.off"))
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
-BENCHMARK_CAPTURE(BM_Tetrahedralize, nefertiti_100k, std::string("nefertiti.off"))
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
-// The same models by each fill: CAD parts, and a scan (cones).
-BENCHMARK_CAPTURE(BM_Tetrahedralize, knot2_12k_direct, std::string("knot2_two_components.off"), true)
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
-BENCHMARK_CAPTURE(BM_Tetrahedralize, knot2_12k_layered, std::string("knot2_two_components.off"), false)
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
-BENCHMARK_CAPTURE(BM_Tetrahedralize, boolean_29k_direct, std::string("cad_boolean.off"), true)
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
-BENCHMARK_CAPTURE(BM_Tetrahedralize, boolean_29k_layered, std::string("cad_boolean.off"), false)
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
-BENCHMARK_CAPTURE(BM_Tetrahedralize, bunny_7k_layered, std::string("bunny_libigl.off"), false)
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
+// name, good mesh, fill (true: the Delaunay fast path where it applies).
+struct Case {
+  const char* name;
+  const char* mesh;
+  bool direct;
+};
+constexpr Case kCases[] = {
+    {"thingi_552", "thingi10k_288351.off", true},
+    {"bunny_7k", "bunny_libigl.off", true},
+    {"fandisk_13k", "fandisk_cgal.off", true},
+    {"armadillo_52k", "armadillo_cgal.off", true},
+    {"nefertiti_100k", "nefertiti.off", true},
+    // The same models by each fill: CAD parts, and a scan (cones).
+    {"knot2_12k_direct", "knot2_two_components.off", true},
+    {"knot2_12k_layered", "knot2_two_components.off", false},
+    {"boolean_29k_direct", "cad_boolean.off", true},
+    {"boolean_29k_layered", "cad_boolean.off", false},
+    {"bunny_7k_layered", "bunny_libigl.off", false},
+};
+const int registered = [] {
+  for (const Case& c : kCases)
+    benchmark::RegisterBenchmark((std::string("BM_Tetrahedralize/") + c.name).c_str(), BM_Tetrahedralize,
+                                 std::string(c.mesh), c.direct)
+        ->Unit(benchmark::kSecond)
+        ->Iterations(1);
+  return 0;
+}();
 
 } // namespace
 

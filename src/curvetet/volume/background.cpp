@@ -84,21 +84,23 @@ Box padded_box(const std::vector<mesh::Vec3>& around, double margin) {
   return {lo, hi};
 }
 
-void append_box_points(const Box& box, std::vector<mesh::Vec3>& pts) {
+void append_new_points(std::vector<mesh::Vec3>& pts, const std::vector<mesh::Vec3>& extra) {
   std::set<std::array<double, 3>> taken;
   for (const auto& p : pts) taken.insert({p.x(), p.y(), p.z()});
-  const auto &lo = box.lo, &hi = box.hi;
-  for (int c = 0; c < 8; ++c) {
-    const mesh::Vec3 p(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
+  for (const auto& p : extra)
     if (taken.insert({p.x(), p.y(), p.z()}).second) pts.push_back(p);
-  }
+}
+
+void append_box_points(const Box& box, std::vector<mesh::Vec3>& pts) {
+  const auto &lo = box.lo, &hi = box.hi;
+  std::vector<mesh::Vec3> extra;
+  for (int c = 0; c < 8; ++c)
+    extra.emplace_back(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
   constexpr int kGrid = 8;
   for (int i = 1; i < kGrid; ++i)
     for (int j = 1; j < kGrid; ++j)
-      for (int k = 1; k < kGrid; ++k) {
-        const mesh::Vec3 p = lo + (hi - lo).cwiseProduct(mesh::Vec3(i, j, k) / kGrid);
-        if (taken.insert({p.x(), p.y(), p.z()}).second) pts.push_back(p);
-      }
+      for (int k = 1; k < kGrid; ++k) extra.push_back(lo + (hi - lo).cwiseProduct(mesh::Vec3(i, j, k) / kGrid));
+  append_new_points(pts, extra);
 }
 
 BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points) {

@@ -21,9 +21,11 @@ struct BackgroundMesh {
 // Outward fills: the bounding box of `around` grown on each side by
 // max(margin, 1e-3) × its diagonal.
 Box padded_box(const std::vector<mesh::Vec3>& around, double margin);
+// Appends the points of `extra` that `pts` does not hold yet (background
+// points must be distinct), in order.
+void append_new_points(std::vector<mesh::Vec3>& pts, const std::vector<mesh::Vec3>& extra);
 // Appends the box's 8 corners and a coarse grid inside it (smaller
-// background tets meet fewer triangles), skipping points already in `pts`
-// (background points must be distinct).
+// background tets meet fewer triangles), skipping points already in `pts`.
 void append_box_points(const Box& box, std::vector<mesh::Vec3>& pts);
 
 // neighbours[t][k] = the tet across the face of tets[t] opposite corner k

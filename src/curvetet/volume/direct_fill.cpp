@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <set>
 #include <unordered_map>
 
 namespace curvetet::volume {
@@ -54,11 +53,10 @@ void append_offset_points(const mesh::SurfaceMesh& surface, bool inward, const B
     depth.push_back(h);
   }
   const auto clearance = check::distances_to_surface(surface, candidates);
-  std::set<std::array<double, 3>> taken;
-  for (const auto& p : pts) taken.insert({p.x(), p.y(), p.z()});
+  std::vector<mesh::Vec3> clear;
   for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (clearance[i] >= kOffsetClearance * depth[i] && taken.insert({candidates[i].x(), candidates[i].y(), candidates[i].z()}).second)
-      pts.push_back(candidates[i]);
+    if (clearance[i] >= kOffsetClearance * depth[i]) clear.push_back(candidates[i]);
+  append_new_points(pts, clear);
 }
 
 } // namespace
@@ -101,33 +99,35 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
   };
   FillStats stats;
   std::vector<int> missing;
-  // Most missing triangles are recovered by flips.
-  auto tetrahedralize_points = [&](bool recover) {
+  auto tetrahedralize_points = [&] {
     if (pts.size() >= static_cast<std::size_t>(kMaxFaceKeyId)) return false; // see face_key
     bg = delaunay(pts);
     missing = missing_triangles();
     stats.missing_triangles = missing.size();
     stats.recovered_by_flips = 0;
-    if (!recover || missing.empty()) return true;
+    return true;
+  };
+  auto recover_by_flips = [&] {
+    if (missing.empty()) return;
     bg = recover_triangles(bg, surface.faces, missing);
     missing = missing_triangles();
     stats.recovered_by_flips = stats.missing_triangles - missing.size();
     logger().debug("volume: {} of {} missing surface triangles recovered by flips", stats.recovered_by_flips,
                    stats.missing_triangles);
-    return true;
   };
   // The surface's own vertices first: on CAD surfaces every triangle, or all
   // but a few that flips recover, is a Delaunay face. Elsewhere (scans), the
   // offset points join them (they also keep the tets at the surface off it),
   // and interior points stand in for the triangles flips cannot recover,
   // each the apex of a cone that fills part of a cavity.
-  if (!tetrahedralize_points(false)) return std::nullopt;
-  if (!missing.empty() && missing.size() <= kFewMissing * surface.faces.size()) tetrahedralize_points(true);
+  if (!tetrahedralize_points()) return std::nullopt;
+  if (missing.size() <= kFewMissing * surface.faces.size()) recover_by_flips();
   if (!missing.empty()) {
     const auto before = pts.size();
     append_offset_points(surface, inward, box, pts);
     stats.offset_points = pts.size() - before;
-    if (!tetrahedralize_points(true)) return std::nullopt;
+    if (!tetrahedralize_points()) return std::nullopt;
+    recover_by_flips();
   }
   const auto side_tets = volume::side_tets(bg, surface.faces, face_of, missing, inward);
   if (!side_tets) {

@@ -1420,13 +1420,13 @@ void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
     any |= relocate_worst(o, bad, above);
     if (plan.splits && plan.insert) any |= insert_worst(o, bad, above);
     if (plan.splits) any |= split_worst(o, bad, above);
-    if (plan.insert) {
-      for (int t = 0; t < o.num_tets(); ++t)
-        if (o.alive(t) && o.tet_energy(t) >= above && tried.count(corners(t)) &&
-            ++failures[corners(t)] == kMaxTries) {
-          set_aside.insert(corners(t));
-          any = true;
-        }
+    for (int t = 0; t < o.num_tets() && plan.insert; ++t) {
+      if (!o.alive(t) || o.tet_energy(t) < above) continue;
+      const Tet c = corners(t);
+      if (tried.count(c) && ++failures[c] == kMaxTries) {
+        set_aside.insert(c);
+        any = true;
+      }
     }
     logger().debug("volume: worst pass {}: max {:.4g}, {:.4g} with a free vertex, {:.4g} not set aside ({}); {} tets "
                    "above {:.4g}, changed: {}",
