@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace curvetet {
@@ -63,6 +64,32 @@ TEST(TetAmips, MatchesTheReferenceAndItsGradientMatchesCentralDifferences) {
     ++checked;
   }
   EXPECT_GT(checked, 100);
+}
+
+// The bound is attained (apex above the centroid) and no apex beats it: a
+// random search over apexes never goes below, and gets near it.
+TEST(TetAmips, LeastEnergyOnAFaceIsAttainedAndNeverBeaten) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec3 a(u(rng), u(rng), 0), b(u(rng), u(rng), 0), c(u(rng), u(rng), 0);
+    const double bound = volume::least_amips_on_face(a, b, c);
+    const double l = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+    const double up = (b - a).cross(c - a).z() > 0 ? 1 : -1; // the side where the tet is positive
+    const Vec3 best = (a + b + c) / 3 + Vec3(0, 0, up * std::sqrt(2 * l / 9));
+    EXPECT_NEAR(reference_amips(a, b, c, best), bound, 1e-9 * bound);
+    double least = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 2000; ++k) {
+      const Vec3 apex = best + 0.3 * std::sqrt(l) * Vec3(u(rng), u(rng), u(rng));
+      const double e = volume::tet_amips(a, b, c, apex);
+      EXPECT_GE(e, bound * (1 - 1e-12));
+      least = std::min(least, e);
+    }
+    EXPECT_LT(least, 1.05 * bound);
+  }
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0.5, std::sqrt(3.0) / 2, 0);
+  EXPECT_NEAR(volume::least_amips_on_face(a, b, c), 1.0, 1e-12);
+  EXPECT_TRUE(std::isinf(volume::least_amips_on_face(a, b, Vec3(2, 0, 0))));
 }
 
 } // namespace

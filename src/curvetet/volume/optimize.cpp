@@ -1324,6 +1324,21 @@ bool split_worst(Optimizer& o, const std::vector<int>& bad, double above) {
 // count.
 constexpr double kGoodMaxEnergy = 3.5;
 constexpr double kBroadEnergy = 12;
+// Within 1 % of the least energy its boundary faces allow, a tet is left
+// alone, and once the maximum is, the passes stop (bunny: 8 passes, a third
+// of its run, took 5.48 to 5.47 over a floor of 5.46).
+constexpr double kNearFloor = 1.01;
+// The least energy tet t can have while its boundary faces (input or box
+// faces, which stay) stay: 0 without one.
+double boundary_floor(Optimizer& o, int t) {
+  const Tet& q = o.mesh().tets[t];
+  const auto& d = o.mesh().v.d;
+  double floor = 0;
+  for (int k = 0; k < 4; ++k)
+    if (o.across(t, k) < 0)
+      floor = std::max(floor, least_amips_on_face(d[q[(k + 1) % 4]], d[q[(k + 2) % 4]], d[q[(k + 3) % 4]]));
+  return floor;
+}
 struct WorstPassPlan {
   int passes = 8;
   double focus = 0.5;
@@ -1356,6 +1371,9 @@ void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
   const std::size_t budget = o.num_alive();
   double best_open = std::numeric_limits<double>::infinity();
   double previous = std::numeric_limits<double>::infinity(), previous_all = previous;
+  double floor = 0; // no mesh with these boundary faces has a lower maximum
+  for (int t = 0; t < o.num_tets(); ++t)
+    if (o.alive(t)) floor = std::max(floor, boundary_floor(o, t));
   for (int pass = 0; pass < plan.passes; ++pass) {
     // mx: over tets with a free vertex (those smoothing can change);
     // mx_open: over all, those set aside excepted.
@@ -1370,6 +1388,7 @@ void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
         mx_open = std::max(mx_open, e);
         if (has_free_vertex(t)) mx = std::max(mx, e);
       }
+    if (mx_all <= kNearFloor * floor) break;
     if (plan.insert) {
       // A budget of as many tries as the mesh has tets: where thousands of
       // tets stay bad (needle input faces) passes would go on for long.
@@ -1406,7 +1425,9 @@ void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
     const double threshold = std::max(2.0, plan.focus * target);
     std::vector<int> bad;
     for (int t = 0; t < o.num_tets(); ++t)
-      if (o.alive(t) && o.tet_energy(t) >= threshold && !stuck[t]) bad.push_back(t);
+      if (o.alive(t) && o.tet_energy(t) >= threshold && !stuck[t] &&
+          o.tet_energy(t) > kNearFloor * boundary_floor(o, t))
+        bad.push_back(t);
     std::set<Tet> tried;
     if (plan.insert)
       for (int t : bad) tried.insert(corners(t));

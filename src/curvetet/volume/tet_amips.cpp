@@ -77,4 +77,13 @@ double tet_amips_gradient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec
   return energy;
 }
 
+double least_amips_on_face(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double l = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  const double g = 2 * std::sqrt(2.0) * area * std::sqrt(2 * l / 9);
+  if (!(g > 0)) return std::numeric_limits<double>::infinity();
+  const double cg = positive_cbrt(g);
+  return l / (3 * cg * cg);
+}
+
 } // namespace curvetet::volume

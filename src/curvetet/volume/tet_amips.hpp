@@ -16,4 +16,11 @@ double tet_amips(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 // (0..3; a, b, c, d). grad is left unset when the energy is +inf.
 double tet_amips_gradient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int k, Vec3& grad);
 
+// The least energy of any tet with face (a, b, c), over every apex: a face
+// that must stay (an input triangle) bounds the mesh's maximum from below.
+// With L the sum of the face's squared edge lengths and A its area, the
+// best apex lies above the centroid at height √(2L/9), which gives
+// L / (3 (2√2 A h)^{2/3}); 1 for an equilateral face, +inf for a flat one.
+double least_amips_on_face(const Vec3& a, const Vec3& b, const Vec3& c);
+
 } // namespace curvetet::volume
