@@ -256,11 +256,12 @@ std::uint64_t mix(std::uint64_t x) {
 // cavity growing until every piece has a kernel point: around edges where
 // two of its sectors meet, the tets there; behind the faces that hide a
 // piece's centre, the kept tets there (first those without a surface face
-// when `off_surface_first`).
+// when `off_surface_first`). `too_big` tells a failure on kMaxPieceFaces.
 std::optional<SideTets> cone_cavity(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
                                     const std::vector<std::array<int, 4>>& face_of, const std::vector<int>& missing,
                                     std::vector<char> removed, const std::vector<int>& w, int keep,
-                                    bool off_surface_first) {
+                                    bool off_surface_first, bool& too_big) {
+  too_big = false;
   const int nt = static_cast<int>(bg.tets.size());
   SideTets out;
   const int np = static_cast<int>(bg.points.size());
@@ -283,6 +284,7 @@ std::optional<SideTets> cone_cavity(const BackgroundMesh& bg, const std::vector<
     for (const auto& piece : split.pieces) {
       if (piece.size() > kMaxPieceFaces) {
         logger().debug("volume: a cavity piece has grown to {} faces", piece.size());
+        too_big = true;
         return std::nullopt;
       }
       // Pieces that did not grow keep their point (an LP each is the cost).
@@ -358,10 +360,13 @@ std::optional<SideTets> side_tets(const BackgroundMesh& bg, const std::vector<me
   }
   // Growing behind whatever blocks suits most pieces; where that makes a
   // piece creep along the surface (each kept tet with a surface face brings
-  // it in: sliver_anchor's pieces did past 24 rounds), growing away from
-  // the surface first does.
-  if (auto out = cone_cavity(bg, surface, face_of, missing, removed, w, keep, false)) return out;
-  return cone_cavity(bg, surface, face_of, missing, removed, w, keep, true);
+  // it in: sliver_anchor's pieces did past 12 rounds), growing away from
+  // the surface first does. A piece grown past kMaxPieceFaces grew so in
+  // the other order too on every good mesh (cheese_genus133: 1.2 s more).
+  bool too_big = false;
+  if (auto out = cone_cavity(bg, surface, face_of, missing, removed, w, keep, false, too_big)) return out;
+  if (too_big) return std::nullopt;
+  return cone_cavity(bg, surface, face_of, missing, removed, w, keep, true, too_big);
 }
 
 } // namespace curvetet::volume
