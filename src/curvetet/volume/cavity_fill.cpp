@@ -2,6 +2,7 @@
 
 #include "curvetet/core/log.hpp"
 #include "curvetet/geometry/predicates.hpp"
+#include "curvetet/volume/chebyshev_centre.hpp"
 #include "curvetet/volume/mesh_keys.hpp"
 
 #include <CGAL/Gmpzf.h>
@@ -199,15 +200,16 @@ void remove_around(const std::vector<std::array<int, 4>>& tets, const std::vecto
 }
 
 // A point seeing every face of the piece strictly on its positive side: the
-// centre of the largest ball inside all their half-spaces (an LP solved
-// exactly), rounded, then checked exactly. Without one, `blocking` lists
-// the faces (indices into `piece`) that do not see that centre.
+// centre of the largest ball inside all their half-spaces (an LP, in
+// doubles first; solved exactly where that centre does not pass), rounded,
+// then checked exactly. Without one, `blocking` lists the faces (indices
+// into `piece`) that do not see that centre.
 struct Kernel {
   std::optional<mesh::Vec3> point;
   std::vector<int> blocking;
 };
-Kernel kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces,
-                    const std::vector<int>& piece) {
+Kernel exact_kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces,
+                          const std::vector<int>& piece) {
   // Variables x, y, z, r: maximize r subject to n_i . x - r >= n_i . a_i.
   CGAL::Quadratic_program<double> lp(CGAL::LARGER, false, 0, false, 0);
   for (int i = 0; i < static_cast<int>(piece.size()); ++i) {
@@ -232,6 +234,36 @@ Kernel kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tr
   }
   if (out.blocking.empty()) out.point = s;
   return out;
+}
+
+Kernel kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces,
+                    const std::vector<int>& piece) {
+  std::vector<HalfSpace> halves;
+  mesh::Vec3 lo = p[faces[piece[0]][0]], hi = lo;
+  for (int i : piece) {
+    const auto& f = faces[i];
+    const mesh::Vec3 n = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).normalized();
+    if (!n.allFinite()) return {};
+    halves.push_back({n, n.dot(p[f[0]])});
+    for (int x : f) {
+      lo = lo.cwiseMin(p[x]);
+      hi = hi.cwiseMax(p[x]);
+    }
+  }
+  // The piece is closed, so its kernel lies within its bounding box.
+  const auto centre = chebyshev_centre(halves, lo, hi);
+  if (!centre) return exact_kernel_point(p, faces, piece);
+  Kernel out;
+  for (int i = 0; i < static_cast<int>(piece.size()); ++i) {
+    const auto& f = faces[piece[i]];
+    if (geometry::orient3d(p[f[0]], p[f[1]], p[f[2]], centre->point) <= 0) out.blocking.push_back(i);
+  }
+  if (out.blocking.empty()) {
+    out.point = centre->point;
+    return out;
+  }
+  // A kernel too thin for doubles may still hold a point the exact LP finds.
+  return centre->radius > -1e-9 * (hi - lo).norm() ? exact_kernel_point(p, faces, piece) : out;
 }
 
 // Whether s sees every face of the piece strictly from its positive side.
@@ -306,10 +338,15 @@ std::optional<SideTets> cone_cavity(const BackgroundMesh& bg, const std::vector<
         bool helped = false;
         for (int pass = off_surface_first ? 0 : 1; pass < 2 && !helped; ++pass)
           for (int i : kernel.blocking)
-            if (const int t = boundary.across[piece[i]]; t >= 0 && (pass == 1 || !on_surface(t)))
-              helped = removed[t] = 1;
+            if (const int t = boundary.across[piece[i]]; t >= 0 && (pass == 1 || !on_surface(t))) {
+              removed[t] = 1;
+              helped = true;
+            }
         for (int i = 0; i < static_cast<int>(piece.size()) && !helped; ++i)
-          if (const int t = boundary.across[piece[i]]; t >= 0) helped = removed[t] = 1;
+          if (const int t = boundary.across[piece[i]]; t >= 0) {
+            removed[t] = 1;
+            helped = true;
+          }
         if (!helped) {
           logger().debug("volume: a cavity piece of {} faces has no kernel point", piece.size());
           return std::nullopt;
