@@ -199,15 +199,15 @@ void remove_around(const std::vector<std::array<int, 4>>& tets, const std::vecto
         }
 }
 
-// A point seeing every face of the piece strictly on its positive side: the
-// centre of the largest ball inside all their half-spaces (an LP, in
-// doubles first; solved exactly where that centre does not pass), rounded,
-// then checked exactly. Without one, `blocking` lists the faces (indices
-// into `piece`) that do not see that centre.
+// A point seeing every face of a piece strictly on its positive side, or
+// (without one) the faces, as indices into the piece, that do not see the
+// centre tried.
 struct Kernel {
   std::optional<mesh::Vec3> point;
   std::vector<int> blocking;
 };
+// The centre of the largest ball inside all the faces' half-spaces, by an
+// LP solved exactly, rounded, then checked exactly.
 Kernel exact_kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces,
                           const std::vector<int>& piece) {
   // Variables x, y, z, r: maximize r subject to n_i . x - r >= n_i . a_i.
@@ -236,6 +236,8 @@ Kernel exact_kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<me
   return out;
 }
 
+// The same centre from the LP in doubles first (checked exactly just as
+// well); the exact LP only where that one does not pass.
 Kernel kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces,
                     const std::vector<int>& piece) {
   std::vector<HalfSpace> halves;
