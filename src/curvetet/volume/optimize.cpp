@@ -896,10 +896,14 @@ class Optimizer {
     ++stats_.smooths;
     return true;
   }
-  double max_energy_at(const std::vector<Tet>& tets, int v, const Vec3& q, int* worst) const {
+  // The largest energy of `tets` with v at q, or the first one that reaches
+  // `stop` (enough to reject q).
+  double max_energy_at(const std::vector<Tet>& tets, int v, const Vec3& q, int* worst,
+                       double stop = std::numeric_limits<double>::infinity()) const {
     double m = 0;
     for (int i = 0; i < static_cast<int>(tets.size()); ++i) {
       const double e = energy_at(tets[i], v, q);
+      if (e >= stop) return e;
       if (e > m) {
         m = e;
         if (worst) *worst = i;
@@ -933,7 +937,7 @@ class Optimizer {
         if (dirs[i].isZero()) continue;
         const Vec3 q = p + step * dirs[i];
         int w = 0;
-        const double e = max_energy_at(tets, v, q, &w);
+        const double e = max_energy_at(tets, v, q, &w, best);
         if (!(e < best) || !valid(q)) continue;
         p = q;
         best = e;
