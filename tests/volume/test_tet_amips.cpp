@@ -32,6 +32,7 @@ TEST(TetAmips, FlatAndInvertedTetsAreInfinite) {
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
   EXPECT_TRUE(std::isinf(volume::tet_amips(a, b, c, Vec3(0.3, 0.3, 0))));
   EXPECT_TRUE(std::isinf(volume::tet_amips(a, c, b, d)));
+  EXPECT_TRUE(std::isinf(volume::tet_amips_cubed(a, c, b, d)));
   Vec3 g;
   EXPECT_TRUE(std::isinf(volume::tet_amips_gradient(a, c, b, d, 0, g)));
 }
@@ -48,6 +49,7 @@ TEST(TetAmips, MatchesTheReferenceAndItsGradientMatchesCentralDifferences) {
     const double ref = reference_amips(x[0], x[1], x[2], x[3]);
     if (!(ref < 1e3)) continue; // near-flat: differences too noisy to compare
     EXPECT_NEAR(volume::tet_amips(x[0], x[1], x[2], x[3]), ref, 1e-9 * ref);
+    EXPECT_NEAR(volume::tet_amips_cubed(x[0], x[1], x[2], x[3]), ref * ref * ref, 1e-9 * ref * ref * ref);
     for (int k = 0; k < 4; ++k) {
       Vec3 g;
       EXPECT_NEAR(volume::tet_amips_gradient(x[0], x[1], x[2], x[3], k, g), ref, 1e-9 * ref);

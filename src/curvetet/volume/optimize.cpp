@@ -896,14 +896,10 @@ class Optimizer {
     ++stats_.smooths;
     return true;
   }
-  // The largest energy of `tets` with v at q, or the first one that reaches
-  // `stop` (enough to reject q).
-  double max_energy_at(const std::vector<Tet>& tets, int v, const Vec3& q, int* worst,
-                       double stop = std::numeric_limits<double>::infinity()) const {
+  double max_energy_at(const std::vector<Tet>& tets, int v, const Vec3& q, int* worst) const {
     double m = 0;
     for (int i = 0; i < static_cast<int>(tets.size()); ++i) {
       const double e = energy_at(tets[i], v, q);
-      if (e >= stop) return e;
       if (e > m) {
         m = e;
         if (worst) *worst = i;
@@ -926,6 +922,22 @@ class Optimizer {
     int worst = 0;
     double best = max_energy_at(tets, v, p, &worst);
     if (!(len > 0)) return best;
+    // The steps compare energies cubed (no cube root in the inner loop).
+    double best3 = best * best * best;
+    auto max_cubed_at = [&](const Vec3& q, int& w) {
+      double m = 0;
+      for (int i = 0; i < static_cast<int>(tets.size()); ++i) {
+        const Vec3* x[4];
+        for (int k = 0; k < 4; ++k) x[k] = tets[i][k] == v ? &q : &m_.v.d[tets[i][k]];
+        const double e = tet_amips_cubed(*x[0], *x[1], *x[2], *x[3]);
+        if (e >= best3) return e; // enough to reject q
+        if (e > m) {
+          m = e;
+          w = i;
+        }
+      }
+      return m;
+    };
     for (double step = 0.2 * len; step > 1e-3 * len;) {
       Vec3 g = Vec3::Zero();
       energy_gradient_at(tets[worst], v, p, g);
@@ -937,10 +949,10 @@ class Optimizer {
         if (dirs[i].isZero()) continue;
         const Vec3 q = p + step * dirs[i];
         int w = 0;
-        const double e = max_energy_at(tets, v, q, &w, best);
-        if (!(e < best) || !valid(q)) continue;
+        const double e3 = max_cubed_at(q, w);
+        if (!(e3 < best3) || !valid(q)) continue;
         p = q;
-        best = e;
+        best3 = e3;
         worst = w;
         improved = true;
       }
@@ -950,10 +962,11 @@ class Optimizer {
         // below it (of the searches that did, none was 25 % above after two
         // halvings; thingi10k's passes spent most of their time on the
         // others).
-        if (best > goal * (1 + 5 * step / len)) return best;
+        const double give_up = goal * (1 + 5 * step / len);
+        if (best3 > give_up * give_up * give_up) break;
       }
     }
-    return best;
+    return max_energy_at(tets, v, p, nullptr);
   }
 
   ExactTetMesh m_;

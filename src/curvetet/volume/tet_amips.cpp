@@ -56,6 +56,13 @@ double tet_amips(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return r.f / (3 * cg * cg);
 }
 
+double tet_amips_cubed(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Edges r = edges(a, b, c, d);
+  const double g = r.dete * kDetWinv;
+  if (!(g > 0)) return std::numeric_limits<double>::infinity();
+  return r.f * r.f * r.f / (27 * g * g);
+}
+
 double tet_amips_gradient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int k, Vec3& grad) {
   const Edges r = edges(a, b, c, d);
   const double g = r.dete * kDetWinv;

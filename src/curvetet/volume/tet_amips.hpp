@@ -16,6 +16,10 @@ double tet_amips(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 // (0..3; a, b, c, d). grad is left unset when the energy is +inf.
 double tet_amips_gradient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int k, Vec3& grad);
 
+// The energy cubed, f³ / (27 g²) without the cube root: the same order,
+// for inner loops that only compare energies.
+double tet_amips_cubed(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
 // The least energy of any tet with face (a, b, c), over every apex: a face
 // that must stay (an input triangle) bounds the mesh's maximum from below.
 // With L the sum of the face's squared edge lengths and A its area, the
