@@ -199,7 +199,17 @@ class Optimizer {
     const std::uint64_t when = flip_failed_[t];
     return when != 0 && std::all_of(m_.tets[t].begin(), m_.tets[t].end(), [&](int x) { return unchanged_since(x, when); });
   }
-  void mark_flips_failed(int t) { flip_failed_[t] = clock_; }
+  void mark_flips_failed(int t) {
+    if (t >= 0) flip_failed_[t] = clock_;
+  }
+  // The live tet with the corners of q (in any order), or -1.
+  int tet_with_corners(const Tet& q) const {
+    for (int t : vt_[q[0]]) {
+      const Tet& r = m_.tets[t];
+      if (std::all_of(q.begin(), q.end(), [&](int x) { return std::find(r.begin(), r.end(), x) != r.end(); })) return t;
+    }
+    return -1;
+  }
 
   // --- worst-tet smoothing: lowers the maximum energy of v's star by a
   // compass search (the gradient of the worst tet first, then the axes);
@@ -364,8 +374,7 @@ class Optimizer {
   // compass search, and keeps the change only if m's star ends strictly
   // below old_max.
   bool commit_split(int m, const std::vector<int>& old, const std::vector<Tet>& parts, double old_max) {
-    journal_.clear();
-    journaling_ = true;
+    begin_journal();
     for (int t : old) kill(t);
     for (const Tet& h : parts) add(h);
     journaling_ = false;
@@ -658,8 +667,7 @@ class Optimizer {
       double new_max = 0;
       for (const auto& t : nt) new_max = std::max(new_max, energy(t));
       if (!(new_max <= bound)) continue;
-      journal_.clear();
-      journaling_ = true;
+      begin_journal();
       ring = edge_ring(a, b); // an undone fan put back copies of the ring
       for (int t : ring) kill(t);
       for (const auto& t : nt) add(t);
@@ -734,6 +742,14 @@ class Optimizer {
   // Undoes the transaction recorded in journal_: the tets it added that are
   // still alive go, and copies of the tets it killed that existed before it
   // come back.
+  void begin_journal() {
+    journal_.clear();
+    saved_touched_.clear();
+    journaling_ = true;
+  }
+  // Puts back what the open transaction removed (under new ids, keeping
+  // their flip stamps) and removes what it added; the change stamps go back
+  // too, so an undone operation does not count as a change around it.
   void undo_journal() {
     const auto journal = std::move(journal_);
     journal_.clear();
@@ -746,8 +762,11 @@ class Optimizer {
     for (const auto& [t, was_added] : journal)
       if (!was_added && !std::binary_search(added.begin(), added.end(), t)) {
         const Tet copy = m_.tets[t]; // add() may reallocate m_.tets
-        add(copy);
+        const std::uint64_t stamp = flip_failed_[t];
+        flip_failed_[add(copy)] = stamp;
       }
+    for (auto it = saved_touched_.rbegin(); it != saved_touched_.rend(); ++it) touched_[it->first] = it->second;
+    saved_touched_.clear();
   }
 
   // 2-3: interior face of tet t opposite its corner k.
@@ -975,6 +994,7 @@ class Optimizer {
   double max_edge_length_; // FillOptions::max_edge_length
   bool journaling_ = false;
   std::vector<std::pair<int, bool>> journal_; // (tet, added) of the open transaction
+  std::vector<std::pair<int, std::uint64_t>> saved_touched_; // (vertex, touched_ before) in it
   std::vector<std::vector<int>> vt_;
   std::vector<char> alive_;
   mutable std::array<std::vector<std::array<int, 3>>, 3> link_tris_;
@@ -1060,6 +1080,7 @@ class Optimizer {
     alive_[t] = 0;
     ++clock_;
     for (int x : m_.tets[t]) {
+      if (journaling_) saved_touched_.emplace_back(x, touched_[x]);
       touched_[x] = clock_;
       auto& l = vt_[x];
       l.erase(std::find(l.begin(), l.end(), t));
@@ -1074,6 +1095,7 @@ class Optimizer {
     ++clock_;
     for (int x : t) {
       vt_[x].push_back(id);
+      if (journaling_) saved_touched_.emplace_back(x, touched_[x]);
       touched_[x] = clock_;
     }
     if (journaling_) journal_.emplace_back(id, true);
@@ -1222,7 +1244,8 @@ std::size_t flip_pass(Optimizer& o, double threshold) {
     for (int k = 0; k < 4 && !done; ++k) done = o.flip_23(t, k);
     for (int i = 0; i < 4 && !done; ++i)
       for (int j = i + 1; j < 4 && !done; ++j) done = o.remove_edge(q[i], q[j]);
-    if (!done) o.mark_flips_failed(t);
+    // A failed edge removal puts t's tet back under a new id.
+    if (!done) o.mark_flips_failed(o.alive(t) ? t : o.tet_with_corners(q));
     flips += done;
   }
   return flips;
