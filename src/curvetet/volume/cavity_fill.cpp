@@ -206,27 +206,10 @@ struct Kernel {
   std::optional<mesh::Vec3> point;
   std::vector<int> blocking;
 };
-// The centre of the largest ball inside all the faces' half-spaces, by an
-// LP solved exactly, rounded, then checked exactly.
-Kernel exact_kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces,
-                          const std::vector<int>& piece) {
-  // Variables x, y, z, r: maximize r subject to n_i . x - r >= n_i . a_i.
-  CGAL::Quadratic_program<double> lp(CGAL::LARGER, false, 0, false, 0);
-  for (int i = 0; i < static_cast<int>(piece.size()); ++i) {
-    const auto& f = faces[piece[i]];
-    mesh::Vec3 n = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]);
-    if (n.norm() == 0) return {};
-    n.normalize();
-    for (int d = 0; d < 3; ++d) lp.set_a(d, i, n[d]);
-    lp.set_a(3, i, -1.0);
-    lp.set_b(i, n.dot(p[f[0]]));
-  }
-  lp.set_c(3, -1.0);
-  const auto solution = CGAL::solve_linear_program(lp, CGAL::Gmpzf());
-  if (!solution.is_optimal()) return {};
-  mesh::Vec3 s;
-  auto value = solution.variable_values_begin();
-  for (int d = 0; d < 3; ++d, ++value) s[d] = CGAL::to_double(*value);
+// The piece's centre `s`, checked exactly: the faces that do not see it
+// strictly, or s as the point when none.
+Kernel check_centre(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces,
+                    const std::vector<int>& piece, const mesh::Vec3& s) {
   Kernel out;
   for (int i = 0; i < static_cast<int>(piece.size()); ++i) {
     const auto& f = faces[piece[i]];
@@ -235,9 +218,26 @@ Kernel exact_kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<me
   if (out.blocking.empty()) out.point = s;
   return out;
 }
-
-// The same centre from the LP in doubles first (checked exactly just as
-// well); the exact LP only where that one does not pass.
+// The centre of the largest ball inside all the half-spaces, by an LP
+// solved exactly (CGAL, Gmpzf), rounded.
+std::optional<mesh::Vec3> exact_centre(const std::vector<HalfSpace>& halves) {
+  // Variables x, y, z, r: maximize r subject to n_i . x - r >= b_i.
+  CGAL::Quadratic_program<double> lp(CGAL::LARGER, false, 0, false, 0);
+  for (int i = 0; i < static_cast<int>(halves.size()); ++i) {
+    for (int d = 0; d < 3; ++d) lp.set_a(d, i, halves[i].normal[d]);
+    lp.set_a(3, i, -1.0);
+    lp.set_b(i, halves[i].offset);
+  }
+  lp.set_c(3, -1.0);
+  const auto solution = CGAL::solve_linear_program(lp, CGAL::Gmpzf());
+  if (!solution.is_optimal()) return std::nullopt;
+  mesh::Vec3 s;
+  auto value = solution.variable_values_begin();
+  for (int d = 0; d < 3; ++d, ++value) s[d] = CGAL::to_double(*value);
+  return s;
+}
+// That centre from the LP in doubles first, from the exact LP where the
+// doubles' centre does not pass (checked exactly either way).
 Kernel kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces,
                     const std::vector<int>& piece) {
   std::vector<HalfSpace> halves;
@@ -252,20 +252,17 @@ Kernel kernel_point(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tr
       hi = hi.cwiseMax(p[x]);
     }
   }
+  auto exactly = [&]() -> Kernel {
+    const auto s = exact_centre(halves);
+    return s ? check_centre(p, faces, piece, *s) : Kernel{};
+  };
   // The piece is closed, so its kernel lies within its bounding box.
   const auto centre = chebyshev_centre(halves, lo, hi);
-  if (!centre) return exact_kernel_point(p, faces, piece);
-  Kernel out;
-  for (int i = 0; i < static_cast<int>(piece.size()); ++i) {
-    const auto& f = faces[piece[i]];
-    if (geometry::orient3d(p[f[0]], p[f[1]], p[f[2]], centre->point) <= 0) out.blocking.push_back(i);
-  }
-  if (out.blocking.empty()) {
-    out.point = centre->point;
-    return out;
-  }
+  if (!centre) return exactly();
+  auto out = check_centre(p, faces, piece, centre->point);
   // A kernel too thin for doubles may still hold a point the exact LP finds.
-  return centre->radius > -1e-9 * (hi - lo).norm() ? exact_kernel_point(p, faces, piece) : out;
+  if (!out.point && centre->radius > -1e-9 * (hi - lo).norm()) return exactly();
+  return out;
 }
 
 // Whether s sees every face of the piece strictly from its positive side.

@@ -113,19 +113,25 @@ class Optimizer {
     if (std::isnan(energy_[t])) energy_[t] = energy(m_.tets[t]);
     return energy_[t];
   }
-  double energy_at(const Tet& t, int v, const Vec3& p) const {
-    const Vec3* x[4];
+  // The corners of t with v at p.
+  std::array<const Vec3*, 4> corners_at(const Tet& t, int v, const Vec3& p) const {
+    std::array<const Vec3*, 4> x;
     for (int k = 0; k < 4; ++k) x[k] = t[k] == v ? &p : &m_.v.d[t[k]];
+    return x;
+  }
+  double energy_at(const Tet& t, int v, const Vec3& p) const {
+    const auto x = corners_at(t, v, p);
     return tet_amips(*x[0], *x[1], *x[2], *x[3]);
+  }
+  // The same energy cubed (the same order, without a cube root).
+  double energy_cubed_at(const Tet& t, int v, const Vec3& p) const {
+    const auto x = corners_at(t, v, p);
+    return tet_amips_cubed(*x[0], *x[1], *x[2], *x[3]);
   }
   // Energy of t with v at p, and its gradient with respect to v's position.
   double energy_gradient_at(const Tet& t, int v, const Vec3& p, Vec3& grad) const {
-    const Vec3* x[4];
-    int corner = 0;
-    for (int k = 0; k < 4; ++k) {
-      x[k] = t[k] == v ? &p : &m_.v.d[t[k]];
-      if (t[k] == v) corner = k;
-    }
+    const auto x = corners_at(t, v, p);
+    const int corner = static_cast<int>(std::find(t.begin(), t.end(), v) - t.begin());
     return tet_amips_gradient(*x[0], *x[1], *x[2], *x[3], corner, grad);
   }
   // A new free vertex at double position p, in no tet yet.
@@ -739,17 +745,18 @@ class Optimizer {
     return out;
   }
 
-  // Undoes the transaction recorded in journal_: the tets it added that are
-  // still alive go, and copies of the tets it killed that existed before it
-  // come back.
+  // Opens a transaction: kill() and add() record into journal_ (and the
+  // change stamps they overwrite into saved_touched_) until journaling_ is
+  // reset.
   void begin_journal() {
     journal_.clear();
     saved_touched_.clear();
     journaling_ = true;
   }
-  // Puts back what the open transaction removed (under new ids, keeping
-  // their flip stamps) and removes what it added; the change stamps go back
-  // too, so an undone operation does not count as a change around it.
+  // Undoes the transaction recorded in journal_: the tets it added that are
+  // still alive go, and copies of the tets it killed that existed before it
+  // come back (keeping their flip stamps). The change stamps go back too, so
+  // an undone operation does not count as a change around it.
   void undo_journal() {
     const auto journal = std::move(journal_);
     journal_.clear();
@@ -946,9 +953,7 @@ class Optimizer {
     auto max_cubed_at = [&](const Vec3& q, int& w) {
       double m = 0;
       for (int i = 0; i < static_cast<int>(tets.size()); ++i) {
-        const Vec3* x[4];
-        for (int k = 0; k < 4; ++k) x[k] = tets[i][k] == v ? &q : &m_.v.d[tets[i][k]];
-        const double e = tet_amips_cubed(*x[0], *x[1], *x[2], *x[3]);
+        const double e = energy_cubed_at(tets[i], v, q);
         if (e >= best3) return e; // enough to reject q
         if (e > m) {
           m = e;
