@@ -9,6 +9,7 @@
 // its pillar gets zero length.
 #include "curvetet/mesh/surface_mesh.hpp"
 
+#include <functional>
 #include <vector>
 
 namespace curvetet::shell {
@@ -37,7 +38,14 @@ struct ExtrusionOptions {
   double initial_thickness = 1e-4;  // first try; halved per vertex until valid
   int max_rounds = 20;              // thickening rounds
   double singular_dot = 1e-3;       // min n.d below this -> singular vertex
+  // extrude_one_sided only: polled between its exact check passes; when it
+  // returns true, the extrusion throws Stopped.
+  std::function<bool()> stop_requested;
 };
+
+// Thrown when ExtrusionOptions::stop_requested() says the caller no longer
+// wants the layer.
+struct Stopped {};
 
 // The absolute length an option pair means: `absolute` if > 0, else
 // relative * diagonal.

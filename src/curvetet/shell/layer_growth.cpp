@@ -54,6 +54,10 @@ struct Grower {
     return invariants.implicated(s, prisms, InvariantContext{&trackers, caps.get()});
   }
 
+  void stop_if_requested() const {
+    if (spec.stop_requested && spec.stop_requested()) throw Stopped{};
+  }
+
   std::vector<int> vertices_of(const std::vector<int>& prisms) const {
     std::vector<int> out;
     for (int f : prisms)
@@ -89,6 +93,7 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
     }
   g.caps = std::make_unique<CapIndex>(s);
   while (!changed.empty()) {
+    g.stop_if_requested();
     const auto bad = g.implicated(g.prisms_of(changed));
     if (bad.empty()) break;
     if (++stats.initial_halvings > kMaxHalvings)
@@ -139,6 +144,7 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
     int iterations = 0;
     while (!check.empty()) {
       ++iterations;
+      g.stop_if_requested();
       const auto bad = g.implicated(check);
       if (bad.empty()) break;
       std::vector<int> reverted;

@@ -15,6 +15,7 @@
 //     target stops.
 // Only the prisms around changed vertices are re-checked (and their caps
 // against all caps). Deterministic for any thread count.
+#include "curvetet/shell/extrusion.hpp"
 #include "curvetet/shell/shell.hpp"
 
 #include <functional>
@@ -34,7 +35,11 @@ struct LayerGrowthSpec {
   // Called after the initial layer and after the rounds (e.g. the global
   // --debug-invariants check); may throw.
   std::function<void(const Shell&, std::string_view stage)> after_stage;
+  // Polled before every check pass; when it returns true, grow_layer throws
+  // Stopped (extrusion.hpp; the caller no longer wants the layer).
+  std::function<bool()> stop_requested;
 };
+
 
 struct LayerGrowthStats {
   int initial_halvings = 0; // halving passes of the initial layer

@@ -25,6 +25,7 @@ OneSidedExtrusion extrude_one_sided(const mesh::SurfaceMesh& surface, Side side,
   spec.target = absolute_length(options.target_thickness, options.target_thickness_abs, diag);
   spec.initial = std::min(spec.target, options.initial_thickness * diag);
   spec.max_rounds = options.max_rounds;
+  spec.stop_requested = options.stop_requested;
   spec.direction.resize(surface.num_vertices());
   s.singular.resize(surface.num_vertices());
   for (int v = 0; v < surface.num_vertices(); ++v) {

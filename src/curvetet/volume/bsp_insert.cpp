@@ -493,7 +493,8 @@ class Complex {
     const bool first_plus = sgn_[first[1]] > 0;
     const int a = l[z0], b = l[z1];
     const int g = static_cast<int>(faces.size());
-    faces.push_back(Face{second, {faces[f].cell[0], faces[f].cell[1]}, -1, faces[f].plane, faces[f].origin});
+    // A piece of a face lying in a surface triangle lies in it too.
+    faces.push_back(Face{second, {faces[f].cell[0], faces[f].cell[1]}, faces[f].tri, faces[f].plane, faces[f].origin});
     faces[f].loop = std::move(first);
     // Edges of g (except the chord) now belong to g instead of f.
     for (std::size_t k = 0; k + 1 < second.size(); ++k) {
@@ -569,10 +570,38 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   }
 
   lap("triangle planes");
+  // A triangle that is a face of the background crosses no tet: its face is
+  // labelled now (and its pieces, if other cuts split it, inherit the label)
+  // and only the other triangles are cut in and looked for below.
+  std::vector<int> cut_ids;
+  {
+    std::unordered_map<std::uint64_t, int> initial_face;
+    initial_face.reserve(cx.faces.size());
+    for (int f = 0; f < static_cast<int>(cx.faces.size()) && P.size() < static_cast<std::size_t>(kMaxFaceKeyId); ++f) {
+      const auto& l = cx.faces[f].loop;
+      initial_face.emplace(face_key(l[0], l[1], l[2]), f);
+    }
+    const bool keyed = P.size() < static_cast<std::size_t>(kMaxFaceKeyId); // see face_key
+    for (int t = 0; t < nt; ++t) {
+      const auto& f = triangles[t];
+      const auto it = keyed ? initial_face.find(face_key(f[0], f[1], f[2])) : initial_face.end();
+      if (it != initial_face.end())
+        cx.faces[it->second].tri = t;
+      else
+        cut_ids.push_back(t);
+    }
+  }
   // Cut every tet's cells by the planes of the triangles meeting them. A cell
   // whose (slightly grown) box misses the triangle's box cannot meet the
   // triangle and is skipped; cutting more cells than needed is harmless.
-  const auto tet_tris = triangles_meeting_tets(bg, triangles);
+  auto tet_tris = [&] {
+    std::vector<mesh::Tri> to_cut;
+    for (int t : cut_ids) to_cut.push_back(triangles[t]);
+    auto lists = triangles_meeting_tets(bg, to_cut, /*interior=*/true);
+    for (auto& l : lists)
+      for (int& j : l) j = cut_ids[j];
+    return lists;
+  }();
   const int ntet = static_cast<int>(bg.tets.size());
   std::vector<Eigen::AlignedBox3d> tri_box(nt);
   for (int t = 0; t < nt; ++t) {
@@ -649,7 +678,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
       const int f = work.back();
       work.pop_back();
       if (static_cast<int>(checked.size()) < static_cast<int>(cx.faces.size())) checked.resize(cx.faces.size(), 0);
-      if (checked[f]) continue;
+      if (checked[f] || cx.faces[f].tri >= 0) continue;
       checked[f] = 1;
       {
         bool split = false;

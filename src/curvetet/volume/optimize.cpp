@@ -1500,6 +1500,15 @@ void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
   }
 }
 
+// Whether the tet of highest energy has no free vertex.
+bool worst_is_frozen(Optimizer& o) {
+  const auto& m = o.mesh();
+  int worst = -1;
+  for (int t = 0; t < o.num_tets(); ++t)
+    if (o.alive(t) && (worst < 0 || o.tet_energy(t) > o.tet_energy(worst))) worst = t;
+  return worst >= 0 && std::all_of(m.tets[worst].begin(), m.tets[worst].end(), [&](int x) { return m.frozen[x]; });
+}
+
 void smooth_pass(Optimizer& o) {
   auto& m = o.mesh();
   for (int v = 0; v < m.v.size(); ++v)
@@ -1564,6 +1573,16 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
   }
   if (options.optimize_rounds > 0) worst_pass(o, plan);
   phase("worst");
+  // The collapses of a layered fill can leave its worst tet between four
+  // frozen vertices, where only flips and insertions reach (cheese_genus133:
+  // 1014 there, 330 elsewhere): a few passes with insertions, as above.
+  if (options.optimize_rounds > 0 && !plan.insert && plan.splits && worst_is_frozen(o)) {
+    plan.passes = 3;
+    plan.focus = 0.75;
+    plan.insert = true;
+    worst_pass(o, plan);
+    phase("worst with insertions");
+  }
   // Whatever is still rational: remove it or move it to a double position.
   for (int attempt = 0; attempt < 20 && left > 0; ++attempt) {
     collapse_pass(o, true, collapse_failed);
