@@ -525,51 +525,6 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   const int nt = static_cast<int>(triangles.size());
   const auto& P = bg.points;
 
-  // Planes of the triangles (normal = outward face normal) and, for edges
-  // whose two triangles are coplanar, a plane through the edge.
-  std::vector<Plane> tri_plane(nt);
-  struct EdgePlane {
-    Plane plane;
-    int a, b; // the shared edge
-  };
-  std::vector<std::vector<EdgePlane>> edge_planes(nt);
-  {
-    for (int t = 0; t < nt; ++t) {
-      const auto& f = triangles[t];
-      mpq_class u[3], w[3], n[3];
-      for (int i = 0; i < 3; ++i) {
-        u[i] = mpq_class(P[f[1]][i]) - P[f[0]][i];
-        w[i] = mpq_class(P[f[2]][i]) - P[f[0]][i];
-      }
-      cross(u, w, n);
-      tri_plane[t] = make_plane(P[f[0]], n);
-      tri_plane[t].through_triangle = true;
-      for (int k = 0; k < 3; ++k) {
-        tri_plane[t].tri[k] = P[f[k]];
-        tri_plane[t].ids[k] = f[k];
-      }
-    }
-    auto topo = mesh::build_edge_topology(triangles);
-    for (int e = 0; e < topo.num_edges(); ++e) {
-      if (topo.num_faces_of(e) != 2) throw Error(ExitCode::internal, "volume: offset surface is not closed manifold");
-      const int f0 = topo.faces_of(e)[0], f1 = topo.faces_of(e)[1];
-      const int a = topo.edges[e][0], b = topo.edges[e][1];
-      int c1 = -1;
-      for (int k : triangles[f1])
-        if (k != a && k != b) c1 = k;
-      if (cx.side(tri_plane[f0], c1) != 0) continue;
-      // coplanar neighbours: cut along the edge by the plane containing it
-      // and the common normal.
-      mpq_class u[3], m[3];
-      for (int i = 0; i < 3; ++i) u[i] = mpq_class(P[b][i]) - P[a][i];
-      cross(u, tri_plane[f0].n, m);
-      Plane ep = make_plane(P[a], m);
-      edge_planes[f0].push_back({ep, a, b});
-      edge_planes[f1].push_back({ep, a, b});
-    }
-  }
-
-  lap("triangle planes");
   // A triangle that is a face of the background crosses no tet: its face is
   // labelled now (and its pieces, if other cuts split it, inherit the label)
   // and only the other triangles are cut in and looked for below.
@@ -591,6 +546,60 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
         cut_ids.push_back(t);
     }
   }
+  std::vector<char> is_cut(nt, 0);
+  for (int t : cut_ids) is_cut[t] = 1;
+  // Planes of the triangles (normal = outward face normal), made when first
+  // needed (the cut triangles', and the winding numbers' on the way), and,
+  // for edges of a cut triangle whose two triangles are coplanar, a plane
+  // through the edge.
+  std::vector<Plane> tri_plane(nt); // addresses stay: faces point to them
+  std::vector<char> plane_made(nt, 0);
+  auto plane = [&](int t) -> const Plane& {
+    if (plane_made[t]) return tri_plane[t];
+    plane_made[t] = 1;
+    const auto& f = triangles[t];
+    mpq_class u[3], w[3], n[3];
+    for (int i = 0; i < 3; ++i) {
+      u[i] = mpq_class(P[f[1]][i]) - P[f[0]][i];
+      w[i] = mpq_class(P[f[2]][i]) - P[f[0]][i];
+    }
+    cross(u, w, n);
+    tri_plane[t] = make_plane(P[f[0]], n);
+    tri_plane[t].through_triangle = true;
+    for (int k = 0; k < 3; ++k) {
+      tri_plane[t].tri[k] = P[f[k]];
+      tri_plane[t].ids[k] = f[k];
+    }
+    return tri_plane[t];
+  };
+  struct EdgePlane {
+    Plane plane;
+    int a, b; // the shared edge
+  };
+  std::vector<std::vector<EdgePlane>> edge_planes(nt);
+  {
+    auto topo = mesh::build_edge_topology(triangles);
+    for (int e = 0; e < topo.num_edges(); ++e) {
+      if (topo.num_faces_of(e) != 2) throw Error(ExitCode::internal, "volume: offset surface is not closed manifold");
+      const int f0 = topo.faces_of(e)[0], f1 = topo.faces_of(e)[1];
+      if (!is_cut[f0] && !is_cut[f1]) continue;
+      const int a = topo.edges[e][0], b = topo.edges[e][1];
+      int c1 = -1;
+      for (int k : triangles[f1])
+        if (k != a && k != b) c1 = k;
+      const auto& t0 = triangles[f0];
+      if (geometry::orient3d(P[t0[0]], P[t0[1]], P[t0[2]], P[c1]) != 0) continue;
+      // coplanar neighbours: cut along the edge by the plane containing it
+      // and the common normal.
+      mpq_class u[3], m[3];
+      for (int i = 0; i < 3; ++i) u[i] = mpq_class(P[b][i]) - P[a][i];
+      cross(u, plane(f0).n, m);
+      Plane ep = make_plane(P[a], m);
+      edge_planes[f0].push_back({ep, a, b});
+      edge_planes[f1].push_back({ep, a, b});
+    }
+  }
+  lap("triangle planes");
   // Cut every tet's cells by the planes of the triangles meeting them. A cell
   // whose (slightly grown) box misses the triangle's box cannot meet the
   // triangle and is skipped; cutting more cells than needed is harmless.
@@ -611,20 +620,24 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     tri_box[t].max().array() += pad;
   }
   lap("triangle/tet incidence");
-  std::vector<TriangleShape> shape(nt);
-  for (int t = 0; t < nt; ++t) {
+  std::vector<TriangleShape> shapes(cut_ids.size());
+  std::vector<int> shape_of(nt, -1);
+  for (std::size_t i = 0; i < cut_ids.size(); ++i) {
+    const int t = cut_ids[i];
+    shape_of[t] = static_cast<int>(i);
     const auto& f = triangles[t];
-    shape[t].plane = &tri_plane[t];
+    TriangleShape& shape = shapes[i];
+    shape.plane = &plane(t);
     for (int k = 0; k < 3; ++k) {
-      shape[t].corner[k] = {to_h(to_q(P[f[k]])), P[f[k]]};
+      shape.corner[k] = {to_h(to_q(P[f[k]])), P[f[k]]};
       const Vec3& x = P[f[k]];
       const Vec3& y = P[f[(k + 1) % 3]];
       mpq_class u[3], m[3];
-      for (int i = 0; i < 3; ++i) u[i] = mpq_class(y[i]) - x[i];
-      cross(u, tri_plane[t].n, m); // (y - x) x n points away from the triangle
-      shape[t].edge[k] = make_plane(x, m);
-      shape[t].edge[k].ids[0] = f[k];
-      shape[t].edge[k].ids[1] = f[(k + 1) % 3];
+      for (int j = 0; j < 3; ++j) u[j] = mpq_class(y[j]) - x[j];
+      cross(u, shape.plane->n, m); // (y - x) x n points away from the triangle
+      shape.edge[k] = make_plane(x, m);
+      shape.edge[k].ids[0] = f[k];
+      shape.edge[k].ids[1] = f[(k + 1) % 3];
     }
   }
   for (int T = 0; T < ntet; ++T) {
@@ -659,7 +672,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
               misses = false;
         }
       }
-      if (!misses) apply(tri_plane[t], &shape[t]);
+      if (!misses) apply(plane(t), &shapes[shape_of[t]]);
     }
   }
 
@@ -683,7 +696,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
       {
         bool split = false;
         for (int t : tet_tris[T]) {
-          const Plane& pl = tri_plane[t];
+          const Plane& pl = plane(t);
           // Is the face's supporting plane the triangle's? (exact, on the
           // triangle's double corners)
           const Face& face = cx.faces[f];
@@ -693,7 +706,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
             for (int k = 0; k < 3 && in_plane; ++k) {
               const int x = triangles[t][k];
               const auto& id = face.plane->ids;
-              in_plane = x == id[0] || x == id[1] || x == id[2] || side_of(*face.plane, shape[t].corner[k]) == 0;
+              in_plane = x == id[0] || x == id[1] || x == id[2] || side_of(*face.plane, shapes[shape_of[t]].corner[k]) == 0;
             }
           } else {
             const auto& o = face.origin;
@@ -722,7 +735,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
           bool inside = true;
           for (int e = 0; e < 3 && inside; ++e)
             for (int i : cx.faces[f].loop)
-              if (cx.side(shape[t].edge[e], i) > 0) {
+              if (cx.side(shapes[shape_of[t]].edge[e], i) > 0) {
                 inside = false;
                 break;
               }
@@ -741,10 +754,19 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   constexpr int kUnset = std::numeric_limits<int>::min();
   std::vector<int> winding(ncell, kUnset);
   std::deque<int> queue;
-  auto side_of_cell = [&](int c, const Plane& pl) {
+  // Side of cell c of triangle t's plane: by orient3d on a double vertex
+  // off it where there is one (most cells), else on the rational plane.
+  auto side_of_cell = [&](int c, int t) {
+    const auto& q = triangles[t];
+    for (int f : cx.cells[c])
+      for (int i : cx.faces[f].loop)
+        if (cx.v.exact[i]) {
+          const int s = geometry::orient3d(P[q[0]], P[q[1]], P[q[2]], cx.v.d[i]);
+          if (s != 0) return s;
+        }
     for (int f : cx.cells[c])
       for (int i : cx.faces[f].loop) {
-        const int s = cx.side(pl, i);
+        const int s = cx.side(plane(t), i);
         if (s != 0) return s;
       }
     throw Error(ExitCode::internal, "volume: flat BSP cell");
@@ -753,7 +775,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   for (const auto& f : cx.faces)
     if (f.cell[1] < 0 && winding[f.cell[0]] == kUnset) {
       const int c = f.cell[0];
-      winding[c] = f.tri < 0 ? 0 : (side_of_cell(c, tri_plane[f.tri]) < 0 ? 1 : -1);
+      winding[c] = f.tri < 0 ? 0 : (side_of_cell(c, f.tri) < 0 ? 1 : -1);
       queue.push_back(c);
     }
   while (!queue.empty()) {
@@ -764,7 +786,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
       const int o = face.cell[0] == c ? face.cell[1] : face.cell[0];
       if (o < 0) continue;
       int w = winding[c];
-      if (face.tri >= 0) w += side_of_cell(c, tri_plane[face.tri]) > 0 ? 1 : -1;
+      if (face.tri >= 0) w += side_of_cell(c, face.tri) > 0 ? 1 : -1;
       if (winding[o] == kUnset) {
         winding[o] = w;
         queue.push_back(o);

@@ -62,7 +62,8 @@ void append_offset_points(const mesh::SurfaceMesh& surface, bool inward, const B
 } // namespace
 
 std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface, OffsetSide side,
-                                               const FillOptions& options, FillStats* stats_out) {
+                                               const FillOptions& options, FillStats* stats_out,
+                                               const std::function<void()>& on_scan_like) {
   auto t0 = std::chrono::steady_clock::now();
   const bool inward = side == OffsetSide::inward;
   const int n = surface.num_vertices();
@@ -123,6 +124,7 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
   if (!tetrahedralize_points()) return std::nullopt;
   if (missing.size() <= kFewMissing * surface.faces.size()) recover_by_flips();
   if (!missing.empty()) {
+    if (on_scan_like) on_scan_like();
     const auto before = pts.size();
     append_offset_points(surface, inward, box, pts);
     stats.offset_points = pts.size() - before;

@@ -15,13 +15,18 @@
 #include "curvetet/volume/fill.hpp"
 #include "curvetet/volume/layered_surface.hpp"
 
+#include <functional>
 #include <optional>
 
 namespace curvetet::volume {
 
 // nullopt when some cavity cannot be filled by cones (the caller then takes
-// the layered path); `stats` is only written on success.
+// the layered path); `stats` is only written on success. `on_scan_like` is
+// called when the surface's own Delaunay tetrahedralization lacks many of
+// its triangles (over 1 %, as on scans: where the layered path, when it is
+// needed, is), before the longer part of the work.
 std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface, OffsetSide side,
-                                               const FillOptions& options = {}, FillStats* stats = nullptr);
+                                               const FillOptions& options = {}, FillStats* stats = nullptr,
+                                               const std::function<void()>& on_scan_like = {});
 
 } // namespace curvetet::volume

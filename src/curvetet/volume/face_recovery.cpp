@@ -1,5 +1,6 @@
 #include "curvetet/volume/face_recovery.hpp"
 
+#include "curvetet/core/log.hpp"
 #include "curvetet/geometry/predicates.hpp"
 #include "curvetet/volume/mesh_keys.hpp"
 
@@ -296,19 +297,21 @@ struct FlipMesh {
 } // namespace
 
 BackgroundMesh recover_triangles(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
-                                 const std::vector<int>& missing) {
+                                 const std::vector<int>& missing, double min_share) {
   FlipMesh fm(bg, surface);
   // One recovery can open the way for another: sweep again while a sweep
-  // recovers a tenth of those left (each costs ~0.3 ms per failure: on
+  // recovers enough of those left (each costs ~0.3 ms per failure: on
   // slivers_abc, sweeps 3 to 11 took 3.3 s for 242 more of 1665).
   std::vector<int> left = missing;
-  for (std::size_t recovered = left.size(); !left.empty() && 10 * recovered >= left.size();) {
+  for (std::size_t recovered = left.size();
+       !left.empty() && static_cast<double>(recovered) >= min_share * static_cast<double>(left.size());) {
     std::vector<int> still;
     for (int f : left) {
       const auto& t = surface[f];
       if (!fm.recover(t[0], t[1], t[2])) still.push_back(f);
     }
     recovered = left.size() - still.size();
+    logger().debug("volume: flip recovery sweep: {} of {} triangles recovered", recovered, left.size());
     left = std::move(still);
   }
   return fm.compacted();

@@ -297,8 +297,9 @@ class Optimizer {
 
   // --- flips ---
   // 3-2: interior edge (a, b) with exactly three tets around it.
-  bool flip_32(int a, int b) {
-    const std::vector<int> ring = edge_ring(a, b);
+  bool flip_32(int a, int b) { return flip_32(a, b, edge_ring(a, b)); }
+  // The same with the edge's tets known.
+  bool flip_32(int a, int b, const std::vector<int>& ring) {
     if (ring.size() != 3) return false;
     std::vector<int> others;
     for (int t : ring)
@@ -628,8 +629,8 @@ class Optimizer {
   // polygon whose worst tet is best, when that is below the ring's worst.
   // The only flip that changes tets whose four vertices are all frozen
   // beyond 2-3 and 3-2.
-  bool remove_edge(int a, int b) {
-    const std::vector<int> ring = edge_ring(a, b);
+  bool remove_edge(int a, int b) { return remove_edge(a, b, edge_ring(a, b)); }
+  bool remove_edge(int a, int b, const std::vector<int>& ring) {
     const int k = static_cast<int>(ring.size());
     if (k < 4 || k > 7) return false;
     const auto c = ring_cycle(a, b, ring);
@@ -638,6 +639,7 @@ class Optimizer {
     for (int t : ring) best_max = std::max(best_max, tet_energy(t));
     std::vector<Tet> best;
     for (int i = 0; i < k; ++i) {
+      if (!fan_may_beat(a, b, c, i, best_max)) continue;
       auto nt = fan_tets(a, b, c, i);
       double m = 0;
       for (const auto& t : nt) m = std::max(m, energy(t));
@@ -719,6 +721,22 @@ class Optimizer {
       links.push_back(e);
     }
     return volume::ring_cycle(links);
+  }
+
+  // False when the fan of fan_tets(a, b, c, i) surely has a tet of energy
+  // at least `bound`, by the doubles alone: a tet's energy in the orientation
+  // the exact test gives it is never below the smaller of its two
+  // orientations'. Most fans of a bad tet's edges fail here, before the
+  // edge lookups and exact orientations of fan_tets.
+  bool fan_may_beat(int a, int b, const std::vector<int>& c, int i, double bound) const {
+    const int k = static_cast<int>(c.size());
+    const auto& d = m_.v.d;
+    for (int j = 1; j <= k - 2; ++j) {
+      const Vec3 &p = d[c[i]], &q = d[c[(i + j) % k]], &r = d[c[(i + j + 1) % k]];
+      for (int apex : {a, b})
+        if (std::min(tet_amips(p, q, r, d[apex]), tet_amips(q, p, r, d[apex])) >= bound) return false;
+    }
+    return true;
   }
 
   // Tets of the ring polygon c fanned from c[i], joined to a and to b, all
@@ -1243,12 +1261,17 @@ std::size_t flip_pass(Optimizer& o, double threshold) {
     if (!o.alive(t)) continue;
     if (o.tet_energy(t) < threshold || o.flips_known_to_fail(t)) continue;
     const auto q = m.tets[t];
+    // The edges' tets, found once: a flip that fails changes nothing.
+    std::array<std::vector<int>, 6> rings;
     bool done = false;
-    for (int i = 0; i < 4 && !done; ++i)
-      for (int j = i + 1; j < 4 && !done; ++j) done = o.flip_32(q[i], q[j]);
+    for (int i = 0, e = 0; i < 4 && !done; ++i)
+      for (int j = i + 1; j < 4 && !done; ++j, ++e) {
+        rings[e] = o.edge_ring(q[i], q[j]);
+        done = o.flip_32(q[i], q[j], rings[e]);
+      }
     for (int k = 0; k < 4 && !done; ++k) done = o.flip_23(t, k);
-    for (int i = 0; i < 4 && !done; ++i)
-      for (int j = i + 1; j < 4 && !done; ++j) done = o.remove_edge(q[i], q[j]);
+    for (int i = 0, e = 0; i < 4 && !done; ++i)
+      for (int j = i + 1; j < 4 && !done; ++j, ++e) done = o.remove_edge(q[i], q[j], rings[e]);
     // A failed edge removal puts t's tet back under a new id.
     if (!done) o.mark_flips_failed(o.alive(t) ? t : o.tet_with_corners(q));
     flips += done;
