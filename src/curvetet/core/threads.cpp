@@ -5,13 +5,16 @@
 
 namespace curvetet {
 
+// Built in place: a global_control copied out of a temporary is not the one
+// registered (the temporary's destructor lifts the limit again).
 struct ThreadLimit::Impl {
+  explicit Impl(std::size_t n) : control(tbb::global_control::max_allowed_parallelism, n) {}
   tbb::global_control control;
 };
 
 ThreadLimit::ThreadLimit(int threads) {
   std::size_t n = threads > 0 ? static_cast<std::size_t>(threads) : static_cast<std::size_t>(tbb::info::default_concurrency());
-  impl_ = std::make_unique<Impl>(Impl{tbb::global_control(tbb::global_control::max_allowed_parallelism, n)});
+  impl_ = std::make_unique<Impl>(n);
 }
 
 ThreadLimit::~ThreadLimit() = default;
