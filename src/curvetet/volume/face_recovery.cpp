@@ -28,15 +28,6 @@ struct FlipMesh {
       for (int k = 0; k < 3; ++k) surface_edges.insert(edge_key(f[k], f[(k + 1) % 3]));
   }
   int orient(int a, int b, int c, int d) const { return geometry::orient3d(p[a], p[b], p[c], p[d]); }
-  std::vector<int> neighbours(int v) const {
-    std::vector<int> out;
-    for (int t : star[v])
-      for (int x : tets[t])
-        if (x != v) out.push_back(x);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  }
   // The vertices around edge (d, e) in cyclic order, empty when the fan of
   // its tets is not closed.
   std::vector<int> ring(int d, int e, std::vector<int>& ring_tets) const {
@@ -94,26 +85,35 @@ struct FlipMesh {
       if (std::find(tets[t].begin(), tets[t].end(), b) != tets[t].end()) return true;
     return false;
   }
-  // Vertices adjacent to all of `vs`.
-  std::vector<int> common_neighbours(const std::vector<int>& vs) const {
-    auto n = neighbours(vs[0]);
-    for (std::size_t i = 1; i < vs.size(); ++i) {
-      const auto m = neighbours(vs[i]);
-      std::vector<int> both;
-      std::set_intersection(n.begin(), n.end(), m.begin(), m.end(), std::back_inserter(both));
-      n = std::move(both);
+  // The edges de whose ring holds x (the edges of x's link), sorted keys.
+  std::vector<std::uint64_t> link_edges(int x) const {
+    std::vector<std::uint64_t> out;
+    for (int t : star[x]) {
+      std::array<int, 3> o;
+      for (int i = 0, j = 0; i < 4; ++i)
+        if (tets[t][i] != x) o[j++] = tets[t][i];
+      for (int k = 0; k < 3; ++k) out.push_back(edge_key(o[k], o[(k + 1) % 3]));
     }
-    return n;
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
   }
   // Makes `corners` (an edge, or a triangle whose edges exist) part of the
-  // mesh by removing one edge de whose ring holds them all.
-  // A surface edge is never removed (its surface triangles would go).
+  // mesh by removing one edge de whose ring holds them all (tried in the
+  // order of (d, e)). A surface edge is never removed (its surface
+  // triangles would go).
   bool recover(const std::vector<int>& corners) {
-    const auto n = common_neighbours(corners);
-    for (int d : n)
-      for (int e : n)
-        if (d < e && !surface_edges.count(edge_key(d, e)) && has_edge(d, e) && !remove_edge_for(d, e, corners).empty())
-          return true;
+    auto candidates = link_edges(corners[0]);
+    for (std::size_t i = 1; i < corners.size(); ++i) {
+      const auto other = link_edges(corners[i]);
+      std::vector<std::uint64_t> both;
+      std::set_intersection(candidates.begin(), candidates.end(), other.begin(), other.end(), std::back_inserter(both));
+      candidates = std::move(both);
+    }
+    for (const std::uint64_t key : candidates) {
+      const int d = static_cast<int>(key >> 32), e = static_cast<int>(key & 0xffffffffu);
+      if (!surface_edges.count(key) && !remove_edge_for(d, e, corners).empty()) return true;
+    }
     return false;
   }
   // Edge uv through a face whose two tets have u and v as apexes: the 2-3
