@@ -529,22 +529,23 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   // labelled now (and its pieces, if other cuts split it, inherit the label)
   // and only the other triangles are cut in and looked for below.
   std::vector<int> cut_ids;
-  {
+  if (P.size() < static_cast<std::size_t>(kMaxFaceKeyId)) { // see face_key
     std::unordered_map<std::uint64_t, int> initial_face;
     initial_face.reserve(cx.faces.size());
-    for (int f = 0; f < static_cast<int>(cx.faces.size()) && P.size() < static_cast<std::size_t>(kMaxFaceKeyId); ++f) {
+    for (int f = 0; f < static_cast<int>(cx.faces.size()); ++f) {
       const auto& l = cx.faces[f].loop;
       initial_face.emplace(face_key(l[0], l[1], l[2]), f);
     }
-    const bool keyed = P.size() < static_cast<std::size_t>(kMaxFaceKeyId); // see face_key
     for (int t = 0; t < nt; ++t) {
       const auto& f = triangles[t];
-      const auto it = keyed ? initial_face.find(face_key(f[0], f[1], f[2])) : initial_face.end();
+      const auto it = initial_face.find(face_key(f[0], f[1], f[2]));
       if (it != initial_face.end())
         cx.faces[it->second].tri = t;
       else
         cut_ids.push_back(t);
     }
+  } else {
+    for (int t = 0; t < nt; ++t) cut_ids.push_back(t);
   }
   std::vector<char> is_cut(nt, 0);
   for (int t : cut_ids) is_cut[t] = 1;

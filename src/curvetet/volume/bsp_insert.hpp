@@ -3,7 +3,8 @@
 // closed triangle surface into a background tet mesh by binary space
 // partitioning (TetWild §3.1), then keeping one side of it.
 //
-// Every tet is cut by the planes of the surface triangles meeting it (and,
+// A surface triangle that is a face of the background is only labelled.
+// Every tet is cut by the planes of the other surface triangles meeting it (and,
 // where two adjacent triangles are coplanar, by a plane through their shared
 // edge, so no cell face straddles two triangles). Cuts act on a conforming
 // polyhedral complex: splitting an edge or a face updates every cell sharing

@@ -88,9 +88,10 @@ mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& opt
     std::vector<int> missing;
     for (int f = 0; f < static_cast<int>(faces.size()); ++f)
       if (!tet_faces.count(face_key(faces[f][0], faces[f][1], faces[f][2]))) missing.push_back(f);
+    const auto flips_start = std::chrono::steady_clock::now();
     if (!missing.empty()) bg = recover_triangles(bg, faces, missing, 0.2);
     logger().debug("volume: {} offset triangles not in the background Delaunay, flips tried in {:.3f} s",
-                   missing.size(), seconds_since(t0));
+                   missing.size(), seconds_since(flips_start));
   }
 
   auto ins = exact::insert_surface(bg, faces, inward ? 1 : 0);

@@ -48,8 +48,8 @@ LayeredSurface extrude(const mesh::SurfaceMesh& surface, OffsetSide side, double
 // fill tries, when that one finds the surface scan-like (cheese_genus133:
 // 0.7 s less). Serial and at low priority, so that it takes one core and
 // leaves the other to the direct fill; stopped at its next check pass when
-// the direct fill succeeds. (Started on every surface, it took 60 to 170 %
-// more memory and 7 % more time on the large CAD models, which never need it.)
+// the direct fill succeeds. (Started on every surface, it took 90 to 170 %
+// more memory and up to 8 % more time on large models that never need it.)
 class ConcurrentExtrusion {
  public:
   ConcurrentExtrusion(const mesh::SurfaceMesh& surface, OffsetSide side, double thickness)
