@@ -15,9 +15,9 @@
 namespace curvetet::volume {
 
 // Returns bg (neighbours recomputed) after trying to recover the triangles
-// surface[missing[i]]; sweeps again while a sweep recovers `min_share` of
-// those left.
+// surface[missing[i]]; sweeps again while a sweep recovers a fifth of those
+// left.
 BackgroundMesh recover_triangles(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
-                                 const std::vector<int>& missing, double min_share = 0.1);
+                                 const std::vector<int>& missing);
 
 } // namespace curvetet::volume

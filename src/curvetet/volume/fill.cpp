@@ -77,9 +77,7 @@ mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& opt
   // Flips recover most offset triangles that are not Delaunay faces (on
   // cheese_genus133, 5647 of 6954): each one recovered is one triangle less
   // to cut in, and the cuts' rational vertices are what the optimizer then
-  // spends its time collapsing (260k exact tets to 105k there). A sweep
-  // that recovers less than a fifth of those left is the last (the third
-  // there took 0.06 s for 7).
+  // spends its time collapsing (260k exact tets to 105k there).
   if (pts.size() < static_cast<std::size_t>(kMaxFaceKeyId)) { // see face_key
     std::unordered_set<std::uint64_t> tet_faces;
     tet_faces.reserve(2 * 4 * bg.tets.size());
@@ -89,7 +87,7 @@ mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& opt
     for (int f = 0; f < static_cast<int>(faces.size()); ++f)
       if (!tet_faces.count(face_key(faces[f][0], faces[f][1], faces[f][2]))) missing.push_back(f);
     const auto flips_start = std::chrono::steady_clock::now();
-    if (!missing.empty()) bg = recover_triangles(bg, faces, missing, 0.2);
+    if (!missing.empty()) bg = recover_triangles(bg, faces, missing);
     logger().debug("volume: {} offset triangles not in the background Delaunay, flips tried in {:.3f} s",
                    missing.size(), seconds_since(flips_start));
   }
