@@ -6,6 +6,7 @@
 #include "shapes.hpp"
 #include "shell/tiny_meshes.hpp"
 
+#include "curvetet/core/threads.hpp"
 #include "curvetet/geometry/predicates.hpp"
 #include "curvetet/io/msh.hpp"
 #include "curvetet/io/read_surface.hpp"
@@ -124,6 +125,29 @@ TEST(VolumeTetrahedralize, SpotStaysExactThroughWorstTetSplits) {
   EXPECT_LT(r.interior.max_amips, 9.6);
   std::printf("spot: %d tets, %zu splits, %zu flips, max AMIPS %.3g\n", r.mesh.num_tets(), r.interior.splits,
               r.interior.flips, r.interior.max_amips);
+}
+
+// cheese_genus133 is the good model the direct fill cannot do (cavity pieces
+// without a kernel point around its bubbles). Its layered fill recovers
+// most offset triangles by flips and cuts in only the rest: faces that are
+// offset triangles are labelled, cut ones found, and both must give an exact
+// result, better than TetGen's (max AMIPS 1260). The extrusion ran beside
+// the failed direct attempt; with one thread it runs after it, and the
+// output must be the same.
+TEST(VolumeTetrahedralize, CheeseTakesTheLayeredFillWithFewCuts) {
+  const auto cheese = mesh::to_surface_mesh(
+      io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/cheese_genus133.off"));
+  const auto r = expect_exact_by(cheese, false, true);
+  EXPECT_FALSE(r.interior.direct);
+  EXPECT_GT(r.interior.bsp_cuts, 0u);
+  EXPECT_LT(r.interior.bsp_cuts, cheese.faces.size() / 2); // 6227; 34447 without the flips
+  EXPECT_LT(r.interior.max_amips, 1260.0);
+  ThreadLimit one(1);
+  const auto serial = volume::tetrahedralize(cheese);
+  EXPECT_EQ(serial.mesh.vertices, r.mesh.vertices);
+  EXPECT_EQ(serial.mesh.tets, r.mesh.tets);
+  std::printf("cheese: %d tets, %zu cuts, max AMIPS %.4g\n", r.mesh.num_tets(), r.interior.bsp_cuts,
+              r.interior.max_amips);
 }
 
 // Every triangle of knot2 is a face of the Delaunay tetrahedralization of
