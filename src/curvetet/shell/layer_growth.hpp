@@ -40,7 +40,6 @@ struct LayerGrowthSpec {
   std::function<bool()> stop_requested;
 };
 
-
 struct LayerGrowthStats {
   int initial_halvings = 0; // halving passes of the initial layer
   int rounds = 0;
