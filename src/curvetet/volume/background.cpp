@@ -103,6 +103,32 @@ void append_box_points(const Box& box, std::vector<mesh::Vec3>& pts) {
   append_new_points(pts, extra);
 }
 
+std::vector<std::array<int, 4>> triangle_faces(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles,
+                                              std::vector<int>* missing) {
+  std::unordered_map<std::uint64_t, int> triangle_of;
+  triangle_of.reserve(2 * triangles.size());
+  for (int f = 0; f < static_cast<int>(triangles.size()); ++f) {
+    const auto& t = triangles[f];
+    triangle_of.emplace(face_key(t[0], t[1], t[2]), f);
+  }
+  std::vector<std::array<int, 4>> face_of(bg.tets.size(), {-1, -1, -1, -1});
+  std::vector<char> found(triangles.size(), 0);
+  for (std::size_t t = 0; t < bg.tets.size(); ++t)
+    for (int k = 0; k < 4; ++k) {
+      const auto& q = bg.tets[t];
+      const auto it = triangle_of.find(face_key(q[(k + 1) % 4], q[(k + 2) % 4], q[(k + 3) % 4]));
+      if (it == triangle_of.end()) continue;
+      face_of[t][k] = it->second;
+      found[it->second] = 1;
+    }
+  if (missing) {
+    missing->clear();
+    for (int f = 0; f < static_cast<int>(triangles.size()); ++f)
+      if (!found[f]) missing->push_back(f);
+  }
+  return face_of;
+}
+
 BackgroundMesh delaunay(const std::vector<mesh::Vec3>& points) {
   std::vector<std::pair<K::Point_3, int>> input;
   input.reserve(points.size());

@@ -32,6 +32,13 @@ void append_box_points(const Box& box, std::vector<mesh::Vec3>& pts);
 // (-1: none), found by hashing faces.
 std::vector<std::array<int, 4>> face_neighbours(const std::vector<std::array<int, 4>>& tets);
 
+// Which tet faces are triangles: face_of[t][k] = the triangle that is the
+// face of bg.tets[t] opposite corner k, or -1; `missing` (optional) gets
+// the triangles that are no face, in order. Point ids must be below
+// kMaxFaceKeyId (mesh_keys.hpp).
+std::vector<std::array<int, 4>> triangle_faces(const BackgroundMesh& bg, const std::vector<mesh::Tri>& triangles,
+                                              std::vector<int>* missing = nullptr);
+
 // Delaunay tetrahedralization of `points` (CGAL, exact predicates). Points
 // must be pairwise distinct and not all coplanar; throws Error(internal)
 // otherwise.

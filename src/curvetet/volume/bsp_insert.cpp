@@ -131,6 +131,9 @@ class Complex {
   std::vector<Face> faces;
   std::vector<std::vector<int>> cells; // face ids of each cell
   std::vector<std::vector<int>> tet_cells;
+  // face_id[t][k]: the face made for background tet t opposite its corner k
+  // (before any cut).
+  std::vector<std::array<int, 4>> face_id;
   std::size_t num_cuts = 0;
 
   explicit Complex(const BackgroundMesh& bg) {
@@ -143,7 +146,7 @@ class Complex {
     tet_cells.resize(nt);
     // A face is made by the first of its two tets; the second finds it
     // through the neighbour relation (no hashing of 4 x #tets triples).
-    std::vector<std::array<int, 4>> face_id(nt, {-1, -1, -1, -1});
+    face_id.assign(nt, {-1, -1, -1, -1});
     for (int t = 0; t < nt; ++t) {
       const auto& q = bg.tets[t];
       tet_cells[t] = {t};
@@ -530,20 +533,10 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   // and only the other triangles are cut in and looked for below.
   std::vector<int> cut_ids;
   if (P.size() < static_cast<std::size_t>(kMaxFaceKeyId)) { // see face_key
-    std::unordered_map<std::uint64_t, int> initial_face;
-    initial_face.reserve(cx.faces.size());
-    for (int f = 0; f < static_cast<int>(cx.faces.size()); ++f) {
-      const auto& l = cx.faces[f].loop;
-      initial_face.emplace(face_key(l[0], l[1], l[2]), f);
-    }
-    for (int t = 0; t < nt; ++t) {
-      const auto& f = triangles[t];
-      const auto it = initial_face.find(face_key(f[0], f[1], f[2]));
-      if (it != initial_face.end())
-        cx.faces[it->second].tri = t;
-      else
-        cut_ids.push_back(t);
-    }
+    const auto face_of = triangle_faces(bg, triangles, &cut_ids);
+    for (std::size_t T = 0; T < bg.tets.size(); ++T)
+      for (int k = 0; k < 4; ++k)
+        if (face_of[T][k] >= 0) cx.faces[cx.face_id[T][k]].tri = face_of[T][k];
   } else {
     for (int t = 0; t < nt; ++t) cut_ids.push_back(t);
   }
@@ -614,7 +607,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   }();
   const int ntet = static_cast<int>(bg.tets.size());
   std::vector<Eigen::AlignedBox3d> tri_box(nt);
-  for (int t = 0; t < nt; ++t) {
+  for (int t : cut_ids) {
     for (int k : triangles[t]) tri_box[t].extend(P[k]);
     const double pad = 1e-9 * (tri_box[t].max().cwiseAbs().maxCoeff() + tri_box[t].min().cwiseAbs().maxCoeff());
     tri_box[t].min().array() -= pad;
@@ -627,20 +620,21 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
     const int t = cut_ids[i];
     shape_of[t] = static_cast<int>(i);
     const auto& f = triangles[t];
-    TriangleShape& shape = shapes[i];
-    shape.plane = &plane(t);
+    TriangleShape& sh = shapes[i];
+    sh.plane = &plane(t);
     for (int k = 0; k < 3; ++k) {
-      shape.corner[k] = {to_h(to_q(P[f[k]])), P[f[k]]};
+      sh.corner[k] = {to_h(to_q(P[f[k]])), P[f[k]]};
       const Vec3& x = P[f[k]];
       const Vec3& y = P[f[(k + 1) % 3]];
       mpq_class u[3], m[3];
       for (int j = 0; j < 3; ++j) u[j] = mpq_class(y[j]) - x[j];
-      cross(u, shape.plane->n, m); // (y - x) x n points away from the triangle
-      shape.edge[k] = make_plane(x, m);
-      shape.edge[k].ids[0] = f[k];
-      shape.edge[k].ids[1] = f[(k + 1) % 3];
+      cross(u, sh.plane->n, m); // (y - x) x n points away from the triangle
+      sh.edge[k] = make_plane(x, m);
+      sh.edge[k].ids[0] = f[k];
+      sh.edge[k].ids[1] = f[(k + 1) % 3];
     }
   }
+  auto shape = [&](int t) -> const TriangleShape& { return shapes[shape_of[t]]; };
   for (int T = 0; T < ntet; ++T) {
     for (int t : tet_tris[T]) {
       auto apply = [&](const Plane& p, const TriangleShape* filter) {
@@ -673,7 +667,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
               misses = false;
         }
       }
-      if (!misses) apply(plane(t), &shapes[shape_of[t]]);
+      if (!misses) apply(plane(t), &shape(t));
     }
   }
 
@@ -707,7 +701,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
             for (int k = 0; k < 3 && in_plane; ++k) {
               const int x = triangles[t][k];
               const auto& id = face.plane->ids;
-              in_plane = x == id[0] || x == id[1] || x == id[2] || side_of(*face.plane, shapes[shape_of[t]].corner[k]) == 0;
+              in_plane = x == id[0] || x == id[1] || x == id[2] || side_of(*face.plane, shape(t).corner[k]) == 0;
             }
           } else {
             const auto& o = face.origin;
@@ -736,7 +730,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
           bool inside = true;
           for (int e = 0; e < 3 && inside; ++e)
             for (int i : cx.faces[f].loop)
-              if (cx.side(shapes[shape_of[t]].edge[e], i) > 0) {
+              if (cx.side(shape(t).edge[e], i) > 0) {
                 inside = false;
                 break;
               }

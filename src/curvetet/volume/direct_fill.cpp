@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <unordered_map>
 
 namespace curvetet::volume {
 namespace {
@@ -73,37 +72,14 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
     box = padded_box(surface.vertices, options.box_margin);
     append_box_points(box, pts);
   }
-  // Which tet faces are surface triangles.
-  std::unordered_map<std::uint64_t, int> triangle_of;
-  triangle_of.reserve(2 * surface.faces.size());
-  for (int f = 0; f < surface.num_faces(); ++f) {
-    const auto& t = surface.faces[f];
-    triangle_of.emplace(face_key(t[0], t[1], t[2]), f);
-  }
   BackgroundMesh bg;
   std::vector<std::array<int, 4>> face_of;
-  auto missing_triangles = [&] {
-    face_of.assign(bg.tets.size(), {-1, -1, -1, -1});
-    std::vector<char> found(surface.faces.size(), 0);
-    for (std::size_t t = 0; t < bg.tets.size(); ++t)
-      for (int k = 0; k < 4; ++k) {
-        const auto& q = bg.tets[t];
-        const auto it = triangle_of.find(face_key(q[(k + 1) % 4], q[(k + 2) % 4], q[(k + 3) % 4]));
-        if (it == triangle_of.end()) continue;
-        face_of[t][k] = it->second;
-        found[it->second] = 1;
-      }
-    std::vector<int> out;
-    for (int f = 0; f < surface.num_faces(); ++f)
-      if (!found[f]) out.push_back(f);
-    return out;
-  };
   FillStats stats;
   std::vector<int> missing;
   auto tetrahedralize_points = [&] {
     if (pts.size() >= static_cast<std::size_t>(kMaxFaceKeyId)) return false; // see face_key
     bg = delaunay(pts);
-    missing = missing_triangles();
+    face_of = triangle_faces(bg, surface.faces, &missing);
     stats.missing_triangles = missing.size();
     stats.recovered_by_flips = 0;
     return true;
@@ -111,7 +87,7 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
   auto recover_by_flips = [&] {
     if (missing.empty()) return;
     bg = recover_triangles(bg, surface.faces, missing);
-    missing = missing_triangles();
+    face_of = triangle_faces(bg, surface.faces, &missing);
     stats.recovered_by_flips = stats.missing_triangles - missing.size();
     logger().debug("volume: {} of {} missing surface triangles recovered by flips", stats.recovered_by_flips,
                    stats.missing_triangles);

@@ -13,7 +13,6 @@
 #include <map>
 #include <set>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace curvetet::volume {
 namespace {
@@ -79,13 +78,8 @@ mesh::LinearTetMesh fill_layered(const LayeredSurface& s, const FillOptions& opt
   // to cut in, and the cuts' rational vertices are what the optimizer then
   // spends its time collapsing (260k exact tets to 105k there).
   if (pts.size() < static_cast<std::size_t>(kMaxFaceKeyId)) { // see face_key
-    std::unordered_set<std::uint64_t> tet_faces;
-    tet_faces.reserve(2 * 4 * bg.tets.size());
-    for (const auto& q : bg.tets)
-      for (int k = 0; k < 4; ++k) tet_faces.insert(face_key(q[(k + 1) % 4], q[(k + 2) % 4], q[(k + 3) % 4]));
     std::vector<int> missing;
-    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
-      if (!tet_faces.count(face_key(faces[f][0], faces[f][1], faces[f][2]))) missing.push_back(f);
+    triangle_faces(bg, faces, &missing);
     const auto flips_start = std::chrono::steady_clock::now();
     if (!missing.empty()) bg = recover_triangles(bg, faces, missing);
     logger().debug("volume: {} offset triangles not in the background Delaunay, flips tried in {:.3f} s",

@@ -205,17 +205,7 @@ class Optimizer {
     const std::uint64_t when = flip_failed_[t];
     return when != 0 && std::all_of(m_.tets[t].begin(), m_.tets[t].end(), [&](int x) { return unchanged_since(x, when); });
   }
-  void mark_flips_failed(int t) {
-    if (t >= 0) flip_failed_[t] = clock_;
-  }
-  // The live tet with the corners of q (in any order), or -1.
-  int tet_with_corners(const Tet& q) const {
-    for (int t : vt_[q[0]]) {
-      const Tet& r = m_.tets[t];
-      if (std::all_of(q.begin(), q.end(), [&](int x) { return std::find(r.begin(), r.end(), x) != r.end(); })) return t;
-    }
-    return -1;
-  }
+  void mark_flips_failed(int t) { flip_failed_[t] = clock_; }
 
   // --- worst-tet smoothing: lowers the maximum energy of v's star by a
   // compass search (the gradient of the worst tet first, then the axes);
@@ -1261,7 +1251,8 @@ std::size_t flip_pass(Optimizer& o, double threshold) {
     if (!o.alive(t)) continue;
     if (o.tet_energy(t) < threshold || o.flips_known_to_fail(t)) continue;
     const auto q = m.tets[t];
-    // The edges' tets, found once: a flip that fails changes nothing.
+    // The edges' tets, found once: a flip that fails changes nothing (so t
+    // is still alive below when none succeeded).
     std::array<std::vector<int>, 6> rings;
     bool done = false;
     for (int i = 0, e = 0; i < 4 && !done; ++i)
@@ -1272,8 +1263,7 @@ std::size_t flip_pass(Optimizer& o, double threshold) {
     for (int k = 0; k < 4 && !done; ++k) done = o.flip_23(t, k);
     for (int i = 0, e = 0; i < 4 && !done; ++i)
       for (int j = i + 1; j < 4 && !done; ++j, ++e) done = o.remove_edge(q[i], q[j], rings[e]);
-    // A failed edge removal puts t's tet back under a new id.
-    if (!done) o.mark_flips_failed(o.alive(t) ? t : o.tet_with_corners(q));
+    if (!done) o.mark_flips_failed(t);
     flips += done;
   }
   return flips;
