@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <random>
+
 using curvetet::geometry::Point3;
 namespace g = curvetet::geometry;
 
@@ -21,6 +25,34 @@ TEST(Orient3d, ExactWhereDoublesRoundWrongly) {
   EXPECT_EQ(g::orient3d(a, b, c, d), 1);
   EXPECT_EQ(g::orient3d(a, b, c, Point3(0.5, 0.5, -1e-300)), -1);
   EXPECT_EQ(g::orient3d(a, b, c, Point3(0.5, 0.5, 0.0)), 0);
+}
+
+// The inline filter must never decide differently from the exact
+// predicate: points on small integer grids (many exact zeros), then nudged
+// off their plane by one ulp, at scales from 1e-200 to 1e+160 (underflow
+// and overflow of the filter's products), and NaN.
+TEST(Orient3d, FilterAgreesWithExactOnNearDegenerateInput) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> grid(-3, 3);
+  std::uniform_real_distribution<double> weight(-1, 1);
+  int zeros = 0;
+  for (int k = 0; k < 200000; ++k) {
+    Point3 a(grid(rng), grid(rng), grid(rng)), b(grid(rng), grid(rng), grid(rng)), c(grid(rng), grid(rng), grid(rng));
+    Point3 d = a + weight(rng) * (b - a) + weight(rng) * (c - a);
+    if (k % 3 == 0) d.x() = std::nextafter(d.x(), 1e300);
+    const double scale = std::pow(10.0, 60 * (k % 7) - 200);
+    a *= scale;
+    b *= scale;
+    c *= scale;
+    d *= scale;
+    const int exact = g::orient3d_exact(a, b, c, d);
+    zeros += exact == 0;
+    ASSERT_EQ(g::orient3d(a, b, c, d), exact) << "case " << k;
+  }
+  EXPECT_GT(zeros, 10000); // the degenerate cases were really exercised
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Point3 o(0, 0, 0), x(1, 0, 0), y(0, 1, 0), q(nan, 0, 1);
+  EXPECT_EQ(g::orient3d(o, x, y, q), g::orient3d_exact(o, x, y, q));
 }
 
 TEST(Collinear, ExactOnCoincidentAndNearlyCollinearPoints) {

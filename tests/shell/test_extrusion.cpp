@@ -4,9 +4,12 @@
 #include "curvetet/geometry/predicates.hpp"
 #include "curvetet/shell/extrusion.hpp"
 #include "curvetet/shell/invariants.hpp"
+#include "curvetet/shell/layer_growth.hpp"
 #include "curvetet/shell/prism_tets.hpp"
 
 #include <gtest/gtest.h>
+
+#include <atomic>
 
 using namespace curvetet;
 using namespace curvetet::shell;
@@ -135,4 +138,35 @@ TEST(OneSidedExtrusion, AdjacentSingularVerticesNeedNoSplit) {
   for (char c : x.singular) singular += c;
   EXPECT_GE(singular, 2);
   expect_valid_layer(m, x, Side::outward);
+}
+
+// A stop requested during a check pass ends it at its next batch of exact
+// cap-pair tests, not at the next pass: the layered fill's early extrusion
+// is abandoned this way when the direct fill succeeds, and the fill waited
+// for whole passes (thingi10k: up to 5 ms of a 50 ms run).
+TEST(LayerGrowth, StopRequestedInsideACheckPassEndsIt) {
+  const auto m = test::sphere(2);
+  Shell s;
+  s.middle = m.vertices;
+  s.faces = m.faces;
+  s.input = m;
+  s.tracked.resize(m.num_faces());
+  for (int f = 0; f < m.num_faces(); ++f) s.tracked[f] = {f};
+  s.singular.assign(m.num_vertices(), 0);
+  LayerGrowthSpec spec;
+  spec.grow_top = false;
+  for (const auto& d : extrusion_directions(m, 1e-3)) spec.direction.push_back(d.direction);
+  spec.initial = 0.01;
+  spec.target = 0.05;
+  std::vector<std::string> stages;
+  spec.after_stage = [&](const Shell&, std::string_view stage) { stages.emplace_back(stage); };
+  std::atomic<int> polls = 0; // polled from the worker threads too
+  spec.stop_requested = [&] { return ++polls >= 2; }; // the pass's own poll, then those from inside it
+  std::vector<double> len;
+  EXPECT_THROW(grow_layer(s, spec, len), Stopped);
+  EXPECT_TRUE(stages.empty()) << "stopped only after the initial layer's check pass";
+  // Without a stop, the same growth completes both stages.
+  spec.stop_requested = [] { return false; };
+  grow_layer(s, spec, len);
+  EXPECT_EQ(stages, (std::vector<std::string>{"initial layer", "thickening"}));
 }

@@ -11,7 +11,7 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 K::Point_3 cg(const Point3& p) { return {p.x(), p.y(), p.z()}; }
 } // namespace
 
-int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+int orient3d_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   return static_cast<int>(CGAL::orientation(cg(a), cg(b), cg(c), cg(d)));
 }
 

@@ -11,12 +11,43 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <cmath>
+
 namespace curvetet::geometry {
 
 using Point3 = Eigen::Vector3d;
 
-// -1, 0 or +1 exactly.
-int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+// -1, 0 or +1 exactly, decided by CGAL (its own filter, then exact).
+int orient3d_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+
+// -1, 0 or +1 exactly. Inline, with a floating-point filter in front of
+// orient3d_exact(): the volume code calls it millions of times, and the
+// call into CGAL cost more than the filter itself.
+inline int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  // det[b-a, c-a, d-a] as in Shewchuk's orient3d (rows u, v, w), whose
+  // error is at most (7 + 56 eps) eps times the permanent below. The
+  // differences are kept below 1e100 (no overflow); underflowed products,
+  // then multiplied by at most 1e100, add under 1e-222 in all.
+  const double ux = b.x() - a.x(), uy = b.y() - a.y(), uz = b.z() - a.z();
+  const double vx = c.x() - a.x(), vy = c.y() - a.y(), vz = c.z() - a.z();
+  const double wx = d.x() - a.x(), wy = d.y() - a.y(), wz = d.z() - a.z();
+  const double vxwy = vx * wy, wxvy = wx * vy, wxuy = wx * uy, uxwy = ux * wy, uxvy = ux * vy, vxuy = vx * uy;
+  const double det = uz * (vxwy - wxvy) + vz * (wxuy - uxwy) + wz * (uxvy - vxuy);
+  const double permanent = (std::abs(vxwy) + std::abs(wxvy)) * std::abs(uz) +
+                           (std::abs(wxuy) + std::abs(uxwy)) * std::abs(vz) +
+                           (std::abs(uxvy) + std::abs(vxuy)) * std::abs(wz);
+  constexpr double kEps = 0x1p-53;
+  constexpr double kBound = (7.0 + 56.0 * kEps) * kEps;
+  const double largest = std::max({std::abs(ux), std::abs(uy), std::abs(uz), std::abs(vx), std::abs(vy),
+                                   std::abs(vz), std::abs(wx), std::abs(wy), std::abs(wz)});
+  if (largest <= 1e100) { // false for NaN too
+    const double bound = kBound * permanent + 1e-222;
+    if (det > bound) return 1;
+    if (det < -bound) return -1;
+  }
+  return orient3d_exact(a, b, c, d);
+}
 
 // Exact: a, b, c lie on one line (including coincident points).
 bool collinear(const Point3& a, const Point3& b, const Point3& c);

@@ -101,7 +101,7 @@ void CapIndex::update(const Shell& s, std::span<const int> prisms) {
 std::vector<std::pair<int, int>> CapIndex::intersections(const Shell& s, std::span<const int> prisms) const {
   const CapView view{s, s.num_prisms(), s.num_vertices()};
   // Large batches: one box-intersection sweep beats per-cap grid queries.
-  if (prisms.size() * 8 > static_cast<std::size_t>(view.F)) return cap_intersections(s, prisms);
+  if (prisms.size() * 8 > static_cast<std::size_t>(view.F)) return cap_intersections(s, prisms, poll);
   std::vector<int> mine;
   for (int f : prisms) {
     mine.push_back(f);
@@ -146,7 +146,7 @@ std::vector<std::pair<int, int>> CapIndex::intersections(const Shell& s, std::sp
   });
   std::vector<std::pair<int, int>> candidates;
   for (auto& f : found) candidates.insert(candidates.end(), f.begin(), f.end());
-  return decide_cap_pairs(view, std::move(candidates));
+  return decide_cap_pairs(view, std::move(candidates), poll);
 }
 
 } // namespace curvetet::shell

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -45,7 +46,9 @@ struct CapView {
 };
 
 // Exact decision on unique candidate cap pairs (a < b): the intersecting
-// ones, sorted. Parallel; independent of the thread count.
-std::vector<std::pair<int, int>> decide_cap_pairs(const CapView& view, std::vector<std::pair<int, int>> candidates);
+// ones, sorted. Parallel; independent of the thread count. `poll`, if set,
+// is called before each batch of tests and may throw to abandon them.
+std::vector<std::pair<int, int>> decide_cap_pairs(const CapView& view, std::vector<std::pair<int, int>> candidates,
+                                                  const std::function<void()>& poll = {});
 
 } // namespace curvetet::shell

@@ -38,7 +38,7 @@ struct ExtrusionOptions {
   double initial_thickness = 1e-4;  // first try; halved per vertex until valid
   int max_rounds = 20;              // thickening rounds
   double singular_dot = 1e-3;       // min n.d below this -> singular vertex
-  // extrude_one_sided only: polled between its exact check passes; when it
+  // extrude_one_sided only: polled during its exact check passes; when it
   // returns true, the extrusion throws Stopped.
   std::function<bool()> stop_requested;
 };

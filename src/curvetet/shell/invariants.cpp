@@ -161,9 +161,11 @@ std::vector<int> invalid_section_prisms(const Shell& s) {
 }
 
 // ---- 3 ----
-std::vector<std::pair<int, int>> decide_cap_pairs(const CapView& view, std::vector<std::pair<int, int>> candidates) {
+std::vector<std::pair<int, int>> decide_cap_pairs(const CapView& view, std::vector<std::pair<int, int>> candidates,
+                                                  const std::function<void()>& poll) {
   std::vector<char> hit(candidates.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 256), [&](const auto& r) {
+    if (poll) poll();
     for (std::size_t k = r.begin(); k != r.end(); ++k)
       hit[k] = view.intersect(candidates[k].first, candidates[k].second);
   });
@@ -184,7 +186,8 @@ std::vector<geometry::Box3> cap_boxes(const CapView& view, const std::vector<int
 
 } // namespace
 
-std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<const int> prisms) {
+std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<const int> prisms,
+                                                   const std::function<void()>& poll) {
   const CapView view{s, s.num_prisms(), s.num_vertices()};
   std::vector<int> all(2 * view.F), mine;
   std::iota(all.begin(), all.end(), 0);
@@ -204,7 +207,7 @@ std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<con
     const int a = mine[i], b = all[j];
     if (a != b && (a < b || !queried[b])) candidates.emplace_back(std::min(a, b), std::max(a, b));
   }
-  return decide_cap_pairs(view, std::move(candidates));
+  return decide_cap_pairs(view, std::move(candidates), poll);
 }
 
 std::vector<std::pair<int, int>> cap_intersections(const Shell& s) {

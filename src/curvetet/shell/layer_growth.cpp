@@ -92,6 +92,7 @@ LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<d
       changed.push_back(v);
     }
   g.caps = std::make_unique<CapIndex>(s);
+  if (spec.stop_requested) g.caps->poll = [&g] { g.stop_if_requested(); };
   while (!changed.empty()) {
     g.stop_if_requested();
     const auto bad = g.implicated(g.prisms_of(changed));

@@ -35,7 +35,8 @@ struct LayerGrowthSpec {
   // Called after the initial layer and after the rounds (e.g. the global
   // --debug-invariants check); may throw.
   std::function<void(const Shell&, std::string_view stage)> after_stage;
-  // Polled before every check pass; when it returns true, grow_layer throws
+  // Polled before every check pass and between batches of its exact cap
+  // tests (possibly from worker threads); when it returns true, grow_layer throws
   // Stopped (extrusion.hpp; the caller no longer wants the layer).
   std::function<bool()> stop_requested;
 };

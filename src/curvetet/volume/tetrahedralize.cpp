@@ -47,7 +47,8 @@ LayeredSurface extrude(const mesh::SurfaceMesh& surface, OffsetSide side, double
 // The layered fill's extrusion, run on a thread of its own while the direct
 // fill tries, when that one finds the surface scan-like (cheese_genus133:
 // 0.7 s less). Serial and at low priority, so that it takes one core and
-// leaves the other to the direct fill; stopped at its next check pass when
+// leaves the other to the direct fill; stopped at its next batch of exact
+// tests (within a check pass: thingi10k waited up to 5 ms for whole passes) when
 // the direct fill succeeds. (Started on every surface, it took 90 to 170 %
 // more memory and up to 8 % more time on large models that never need it.)
 class ConcurrentExtrusion {
