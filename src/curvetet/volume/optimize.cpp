@@ -41,6 +41,7 @@ class Optimizer {
     for (int t = 0; t < static_cast<int>(m_.tets.size()); ++t)
       for (int x : m_.tets[t]) vt_[x].push_back(t);
     alive_.assign(m_.tets.size(), 1);
+    across_.assign(m_.tets.size(), {-1, -1, -1, -1});
     energy_.assign(m_.tets.size(), kStale);
     flip_failed_.assign(m_.tets.size(), 0);
     touched_.assign(m_.v.size(), 0);
@@ -569,8 +570,11 @@ class Optimizer {
     }
     return true;
   }
-  // The tet across the face of t opposite its corner k, or -1.
+  // The tet across the face of t opposite its corner k, or -1. A neighbour
+  // found is kept in across_ while it lives (a tet's corners change only in
+  // merge(), which forgets its entries).
   int across(int t, int k) const {
+    if (const int n = across_[t][k]; n >= 0 && alive_[n]) return n;
     const Tet& q = m_.tets[t];
     int a = q[(k + 1) % 4], b = q[(k + 2) % 4], c = q[(k + 3) % 4];
     if (vt_[b].size() < vt_[a].size()) std::swap(a, b); // scan the smallest star
@@ -579,7 +583,7 @@ class Optimizer {
       if (s == t) continue;
       const Tet& r = m_.tets[s];
       const bool has_b = r[0] == b || r[1] == b || r[2] == b || r[3] == b;
-      if (has_b && (r[0] == c || r[1] == c || r[2] == c || r[3] == c)) return s;
+      if (has_b && (r[0] == c || r[1] == c || r[2] == c || r[3] == c)) return across_[t][k] = s;
     }
     return -1;
   }
@@ -866,6 +870,7 @@ class Optimizer {
     for (int t : removed) kill(t);
     ++clock_;
     for (int t : std::vector<int>(vt_[v])) {
+      across_[t] = {-1, -1, -1, -1};
       for (int& x : m_.tets[t])
         if (x == v) x = u;
       vt_[u].push_back(t);
@@ -1010,6 +1015,7 @@ class Optimizer {
   std::vector<std::pair<int, std::uint64_t>> saved_touched_; // (vertex, touched_ before) in it
   std::vector<std::vector<int>> vt_;
   std::vector<char> alive_;
+  mutable std::vector<std::array<int, 4>> across_; // per tet: neighbours found so far (-1: not known)
   mutable std::array<std::vector<std::array<int, 3>>, 3> link_tris_;
   mutable std::array<std::vector<std::array<int, 2>>, 4> link_edges_;
   mutable std::array<std::vector<int>, 4> link_verts_;
@@ -1103,6 +1109,7 @@ class Optimizer {
     const int id = num_tets();
     m_.tets.push_back(t);
     alive_.push_back(1);
+    across_.push_back({-1, -1, -1, -1});
     energy_.push_back(kStale);
     flip_failed_.push_back(0);
     ++clock_;

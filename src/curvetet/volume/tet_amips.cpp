@@ -1,67 +1,11 @@
 #include "curvetet/volume/tet_amips.hpp"
 
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 
 namespace curvetet::volume {
 
-namespace {
-
-// M = W⁻¹W⁻ᵀ for W the edge matrix of the unit-edge regular tet
-// ((1,0,0), (1/2,√3/2,0), (1/2,√3/6,√(2/3))), so tr(JᵀJ) = tr(E M Eᵀ); and
-// det(W⁻¹) = √2.
-constexpr double kM00 = 1.5, kM11 = 1.5, kM22 = 1.5;
-constexpr double kM01 = -0.5, kM02 = -0.5, kM12 = -0.5;
-const double kDetWinv = std::sqrt(2.0);
-
-// Cube root of a positive double: a bit-level first guess refined by two
-// Halley steps (relative error < 1e-13); glibc's cbrt dominated profiles.
-double positive_cbrt(double x) {
-  if (!(x >= std::numeric_limits<double>::min()) || !(x <= 1e300)) return std::cbrt(x);
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  bits = bits / 3 + 0x2A9F7893782DA1CEull;
-  double y;
-  std::memcpy(&y, &bits, sizeof y);
-  for (int i = 0; i < 2; ++i) {
-    const double y3 = y * y * y;
-    y *= (y3 + 2 * x) / (2 * y3 + x);
-  }
-  return y;
-}
-
-struct Edges {
-  Vec3 e0, e1, e2;
-  double f;    // tr(JᵀJ)
-  double dete; // det(E)
-};
-
-Edges edges(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  Edges r{b - a, c - a, d - a, 0, 0};
-  r.f = kM00 * r.e0.squaredNorm() + kM11 * r.e1.squaredNorm() + kM22 * r.e2.squaredNorm() +
-        2 * (kM01 * r.e0.dot(r.e1) + kM02 * r.e0.dot(r.e2) + kM12 * r.e1.dot(r.e2));
-  r.dete = r.e0.dot(r.e1.cross(r.e2));
-  return r;
-}
-
-} // namespace
-
-double tet_amips(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const Edges r = edges(a, b, c, d);
-  const double g = r.dete * kDetWinv;
-  if (!(g > 0)) return std::numeric_limits<double>::infinity();
-  const double cg = positive_cbrt(g);
-  return r.f / (3 * cg * cg);
-}
-
-double tet_amips_cubed(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const Edges r = edges(a, b, c, d);
-  const double g = r.dete * kDetWinv;
-  if (!(g > 0)) return std::numeric_limits<double>::infinity();
-  return r.f * r.f * r.f / (27 * g * g);
-}
+using namespace detail; // the helpers the inline energies share (header)
 
 double tet_amips_gradient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int k, Vec3& grad) {
   const Edges r = edges(a, b, c, d);
