@@ -82,9 +82,14 @@ class ConcurrentExtrusion {
     return std::move(*layer_);
   }
 
-  // Whether a second core is allowed (--threads).
-  static bool worthwhile() {
-    return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) >= 2;
+  // Whether a second core is allowed (--threads) and the surface is large
+  // enough for the overlap to matter: under kMinFaces, an extrusion takes
+  // tens of milliseconds, and abandoning it cost the direct fill more than
+  // that would save (thingi10k, 552 faces: 2 ms of its 53).
+  static bool worthwhile(const mesh::SurfaceMesh& surface) {
+    constexpr int kMinFaces = 2000;
+    return surface.num_faces() >= kMinFaces &&
+           tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) >= 2;
   }
 
  private:
@@ -123,7 +128,7 @@ TetrahedralizeResult tetrahedralize(const mesh::SurfaceMesh& surface, const Tetr
     const char* part = side == OffsetSide::inward ? "interior" : "exterior";
     std::optional<ConcurrentExtrusion> early;
     auto start_early = [&] {
-      if (ConcurrentExtrusion::worthwhile()) early.emplace(surface, side, options.layer_thickness);
+      if (ConcurrentExtrusion::worthwhile(surface)) early.emplace(surface, side, options.layer_thickness);
     };
     if (options.direct)
       if (auto m = fill_direct(surface, side, options.fill, stats, start_early)) {
