@@ -146,13 +146,7 @@ TEST(OneSidedExtrusion, AdjacentSingularVerticesNeedNoSplit) {
 // for whole passes (thingi10k: up to 5 ms of a 50 ms run).
 TEST(LayerGrowth, StopRequestedInsideACheckPassEndsIt) {
   const auto m = test::sphere(2);
-  Shell s;
-  s.middle = m.vertices;
-  s.faces = m.faces;
-  s.input = m;
-  s.tracked.resize(m.num_faces());
-  for (int f = 0; f < m.num_faces(); ++f) s.tracked[f] = {f};
-  s.singular.assign(m.num_vertices(), 0);
+  Shell s = flat_shell(m);
   LayerGrowthSpec spec;
   spec.grow_top = false;
   for (const auto& d : extrusion_directions(m, 1e-3)) spec.direction.push_back(d.direction);

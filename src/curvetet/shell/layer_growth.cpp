@@ -70,6 +70,18 @@ struct Grower {
 
 } // namespace
 
+Shell flat_shell(const mesh::SurfaceMesh& surface) {
+  Shell s;
+  s.middle = surface.vertices;
+  s.top = s.bottom = s.middle;
+  s.faces = surface.faces;
+  s.input = surface;
+  s.tracked.resize(surface.num_faces());
+  for (int f = 0; f < surface.num_faces(); ++f) s.tracked[f] = {f};
+  s.singular.assign(surface.num_vertices(), 0);
+  return s;
+}
+
 LayerGrowthStats grow_layer(Shell& s, const LayerGrowthSpec& spec, std::vector<double>& len) {
   using clock = std::chrono::steady_clock;
   LayerGrowthStats stats;

@@ -41,6 +41,10 @@ struct LayerGrowthSpec {
   std::function<bool()> stop_requested;
 };
 
+// A shell over `surface` with no layer yet: bottom, middle and top are its
+// vertices, each prism tracks its own face, and no pillar is pinched.
+Shell flat_shell(const mesh::SurfaceMesh& surface);
+
 struct LayerGrowthStats {
   int initial_halvings = 0; // halving passes of the initial layer
   int rounds = 0;

@@ -10,12 +10,7 @@ namespace curvetet::shell {
 
 OneSidedExtrusion extrude_one_sided(const mesh::SurfaceMesh& surface, Side side, const ExtrusionOptions& options) {
   if (surface.num_faces() == 0) throw Error(ExitCode::internal, "extrude_one_sided: empty surface");
-  Shell s;
-  s.middle = surface.vertices;
-  s.faces = surface.faces;
-  s.input = surface;
-  s.tracked.resize(surface.num_faces());
-  for (int f = 0; f < surface.num_faces(); ++f) s.tracked[f] = {f};
+  Shell s = flat_shell(surface);
 
   const auto dirs = extrusion_directions(surface, options.singular_dot);
   LayerGrowthSpec spec;
@@ -27,7 +22,6 @@ OneSidedExtrusion extrude_one_sided(const mesh::SurfaceMesh& surface, Side side,
   spec.max_rounds = options.max_rounds;
   spec.stop_requested = options.stop_requested;
   spec.direction.resize(surface.num_vertices());
-  s.singular.resize(surface.num_vertices());
   for (int v = 0; v < surface.num_vertices(); ++v) {
     spec.direction[v] = dirs[v].direction;
     s.singular[v] = dirs[v].singular;
