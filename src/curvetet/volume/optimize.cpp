@@ -623,7 +623,7 @@ class Optimizer {
   // polygon whose worst tet is best, when that is below the ring's worst.
   // The only flip that changes tets whose four vertices are all frozen
   // beyond 2-3 and 3-2.
-  bool remove_edge(int a, int b) { return remove_edge(a, b, edge_ring(a, b)); }
+  // `ring`: the edge's tets (edge_ring).
   bool remove_edge(int a, int b, const std::vector<int>& ring) {
     const int k = static_cast<int>(ring.size());
     if (k < 4 || k > 7) return false;
