@@ -11,6 +11,7 @@
 #include "curvetet/io/msh.hpp"
 #include "curvetet/io/read_surface.hpp"
 #include "curvetet/io/write_surface.hpp"
+#include "curvetet/volume/tet_amips.hpp"
 #include "curvetet/volume/tetrahedralize.hpp"
 
 #include <gtest/gtest.h>
@@ -163,6 +164,22 @@ TEST(VolumeTetrahedralize, DelaunayConformingSurfaceTakesTheDirectFill) {
   EXPECT_LT(r.interior.max_amips, 4.96); // TetGen -pYq's maximum on this model
   std::printf("knot2: %d tets, %zu insertions or splits, max AMIPS %.4g\n", r.mesh.num_tets(), r.interior.splits,
               r.interior.max_amips);
+}
+
+// On cad_freecad_MSOP_10 a thin wedge of the surface forces the tet T* =
+// (2085, 239, 9568, 2111) into every mesh whose worst tet is no worse
+// (bench/msop_max_amips_bound.py proves it): T*'s energy is the least
+// maximum any tetrahedralization of this model can have, and ours has it.
+TEST(VolumeTetrahedralize, MsopReachesTheLeastPossibleMaximum) {
+  const auto msop = mesh::to_surface_mesh(
+      io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/cad_freecad_MSOP_10.off"));
+  const auto r = expect_exact_by(msop, false, true);
+  const auto& x = msop.vertices;
+  const double forced = std::min(volume::tet_amips(x[2085], x[239], x[9568], x[2111]),
+                                 volume::tet_amips(x[2085], x[239], x[2111], x[9568]));
+  EXPECT_LT(forced, 8.29);
+  EXPECT_LE(r.interior.max_amips, forced * (1 + 1e-12));
+  std::printf("MSOP: %d tets, max AMIPS %.17g, forced tet %.17g\n", r.mesh.num_tets(), r.interior.max_amips, forced);
 }
 
 // 118 triangles of spot are not Delaunay faces, and some of their edges are
