@@ -21,10 +21,10 @@ The argument, around two input edges (A, B, C = 2085, 239, 2111):
    (B, C, 9568) whose dihedral angles at (B, C) sum to at most 6.31 degrees.
 3. least(f, e, theta): the least energy of a tet on face f whose dihedral
    angle at f's edge e is theta (its apex anywhere on the half-plane through e
-   at that angle from f: a two-parameter minimization, grid then simplex).
-   It decreases as theta grows (checked on a grid), so two end tets sharing
-   an angle Theta have the worse of them at least the value where
-   least(f1, e, theta) and least(f2, e, Theta - theta) cross (bisection).
+   at that angle from f; in closed form, see least()). It decreases as theta
+   grows (checked at 2000 angles), so two end tets sharing an angle Theta
+   have the worse of them at least the value where least(f1, e, theta) and
+   least(f2, e, Theta - theta) cross (bisection).
 If both crossings are above T*'s energy, T* is in every mesh whose worst tet
 is not worse than T*.
 
@@ -34,7 +34,6 @@ import sys
 from fractions import Fraction
 
 import numpy as np
-from scipy.optimize import minimize
 
 # Regular tet with unit edges: AMIPS measures the map from it.
 W_INV = np.linalg.inv(np.array([[1, 0.5, 0.5], [0, np.sqrt(3) / 2, np.sqrt(3) / 6], [0, 0, np.sqrt(2.0 / 3.0)]]))
@@ -81,30 +80,30 @@ def dihedral(e0, e1, p, q):
 def least(e0, e1, p, toward, theta):
     """Least energy of a tet on face (e0, e1, p) whose apex lies on the
     half-plane through (e0, e1) at angle theta from p's, turned toward
-    `toward` (either orientation: the positive one counts)."""
+    `toward`. In the edge's frame (e0 at the origin, e1 = (l, 0, 0),
+    p = (s_p, h, 0)), the apex (s, r cos(theta), r sin(theta)) gives a tet
+    of volume l h r sin(theta) / 6 and squared edge lengths summing to
+    const + 3 s^2 - 2 s (l + s_p) + 3 r^2 - 2 h r cos(theta). AMIPS is that
+    sum over 6 (6 sqrt(2) volume)^(2/3), so the best apex has s = (l + s_p) / 3
+    and r the one positive root of 12 r^2 - 2 h r cos(theta) - 2 const = 0:
+    a single minimum, evaluated here with the same amips() as everything else."""
     length = np.linalg.norm(e1 - e0)
     k = (e1 - e0) / length
     u = p - e0
-    u = u - k * (k @ u)
-    u /= np.linalg.norm(u)
+    s_p = k @ u
+    u = u - k * s_p
+    h = np.linalg.norm(u)
+    u /= h
     w = np.cross(k, u)
     if w @ (toward - e0) < 0:
         w = -w
     direction = np.cos(theta) * u + np.sin(theta) * w
-
-    def energy(x):
-        if x[1] <= 0:
-            return np.inf
-        apex = e0 + x[0] * length * k + x[1] * length * direction
-        return min(amips(e0, e1, p, apex), amips(e1, e0, p, apex))
-
-    grid = [(energy((s, t)), s, t) for s in np.linspace(-2, 3, 41) for t in np.geomspace(0.01, 5, 40)]
-    grid.sort()
-    best = grid[0][0]
-    for _, s, t in grid[:6]:
-        r = minimize(energy, [s, t], method="Nelder-Mead", options={"xatol": 1e-12, "fatol": 1e-13, "maxiter": 4000})
-        best = min(best, r.fun)
-    return best
+    s = (length + s_p) / 3
+    # The sum's terms without r, at that s: the face's edges, then l^2 + s_p^2 + h^2 - 3 s^2.
+    const = length ** 2 + (s_p ** 2 + h ** 2) + ((s_p - length) ** 2 + h ** 2) + length ** 2 + s_p ** 2 + h ** 2 - 3 * s * s
+    r = (h * np.cos(theta) + np.sqrt((h * np.cos(theta)) ** 2 + 24 * const)) / 12
+    apex = e0 + s * k + r * direction
+    return min(amips(e0, e1, p, apex), amips(e1, e0, p, apex))
 
 
 def crossing(f1, f2, total):
@@ -112,7 +111,7 @@ def crossing(f1, f2, total):
     theta)), for least decreasing in its angle; also checks that it does."""
     one = lambda th: least(*f1, th)
     two = lambda th: least(*f2, total - th)
-    samples = np.linspace(0.02, 0.98, 13) * total
+    samples = np.linspace(0.0005, 0.9995, 2000) * total
     ones, twos = [one(th) for th in samples], [two(th) for th in samples]
     if not (np.all(np.diff(ones) < 0) and np.all(np.diff(twos) > 0)):
         sys.exit("least() is not monotone in its angle here: the argument does not apply")
