@@ -35,8 +35,7 @@ from fractions import Fraction
 
 import numpy as np
 
-# Regular tet with unit edges: AMIPS measures the map from it.
-W_INV = np.linalg.inv(np.array([[1, 0.5, 0.5], [0, np.sqrt(3) / 2, np.sqrt(3) / 6], [0, 0, np.sqrt(2.0 / 3.0)]]))
+from compare_tetgen import W_INV  # the comparison table's AMIPS: the same reference tet
 A, B, C, D_ROOF, E_FLOOR = 2085, 239, 2111, 9568, 241
 
 
@@ -69,12 +68,21 @@ def orient_exact(p, q, r, s):
     return (det > 0) - (det < 0)
 
 
+def edge_frame(e0, e1, p):
+    """Unit vector k along edge (e0, e1); p's coordinate s_p along it, its
+    distance h from the edge's line and the unit vector u from that line
+    toward p."""
+    k = (e1 - e0) / np.linalg.norm(e1 - e0)
+    s_p = k @ (p - e0)
+    u = p - e0 - k * s_p
+    h = np.linalg.norm(u)
+    return k, s_p, h, u / h
+
+
 def dihedral(e0, e1, p, q):
     """Angle at edge (e0, e1) between the half-planes through p and q."""
-    k = (e1 - e0) / np.linalg.norm(e1 - e0)
-    u, w = p - e0, q - e0
-    u, w = u - k * (k @ u), w - k * (k @ w)
-    return np.arccos(np.clip(u @ w / np.linalg.norm(u) / np.linalg.norm(w), -1, 1))
+    u, w = edge_frame(e0, e1, p)[3], edge_frame(e0, e1, q)[3]
+    return np.arccos(np.clip(u @ w, -1, 1))
 
 
 def least(e0, e1, p, toward, theta):
@@ -88,12 +96,7 @@ def least(e0, e1, p, toward, theta):
     and r the one positive root of 12 r^2 - 2 h r cos(theta) - 2 const = 0:
     a single minimum, evaluated here with the same amips() as everything else."""
     length = np.linalg.norm(e1 - e0)
-    k = (e1 - e0) / length
-    u = p - e0
-    s_p = k @ u
-    u = u - k * s_p
-    h = np.linalg.norm(u)
-    u /= h
+    k, s_p, h, u = edge_frame(e0, e1, p)
     w = np.cross(k, u)
     if w @ (toward - e0) < 0:
         w = -w
@@ -128,7 +131,7 @@ def crossing(f1, f2, total):
 def main():
     path = sys.argv[1] if len(sys.argv) > 1 else "../shared/data/good/cad_freecad_MSOP_10.off"
     v, exact, faces = read_off(path)
-    key = lambda f: frozenset(f)
+    key = frozenset
     face_set = {key(f) for f in faces}
     for f in ((A, B, C), (C, B, E_FLOOR), (C, E_FLOOR, D_ROOF)):
         if key(f) not in face_set:
