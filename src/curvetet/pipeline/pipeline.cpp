@@ -192,20 +192,13 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
 
   if (o.optimize) {
     StageTimer t(&report, "curved optimization");
-    const auto st = volume::optimize_curved(r.mesh, o.optimization);
-    report["curved_optimization"] = {
-        {"max_amips_before", st.max_amips_before},   {"max_amips_after", st.max_amips_after},
-        {"mean_amips_before", st.mean_amips_before}, {"mean_amips_after", st.mean_amips_after},
-        {"min_scaled_jacobian_before", st.min_scaled_jacobian_before},
-        {"min_scaled_jacobian_after", st.min_scaled_jacobian_after},
-        {"vertex_moves", st.vertex_moves},           {"node_moves", st.node_moves},
-        {"scaled_jacobian_moves", st.scaled_jacobian_moves},
-        {"rejected_quality", st.rejected_quality},   {"rejected_certificate", st.rejected_certificate},
-        {"passes", st.passes}};
-    logger().info("curved optimization: max AMIPS {:.4g} -> {:.4g}, min scaled Jacobian {:.3g} -> {:.3g}, "
-                  "{} vertex and {} node moves",
-                  st.max_amips_before, st.max_amips_after, st.min_scaled_jacobian_before,
-                  st.min_scaled_jacobian_after, st.vertex_moves, st.node_moves);
+    const auto st = volume::remesh_curved(r.mesh, o.optimization);
+    report["curved_optimization"] = st.json();
+    logger().info("curved optimization: {} -> {} tets, max AMIPS {:.4g} -> {:.4g}, min scaled Jacobian {:.3g} -> "
+                  "{:.3g} ({} collapses, {} flips, {} vertex and {} node moves)",
+                  st.tets_before, st.tets_after, st.max_amips_before, st.max_amips_after,
+                  st.min_scaled_jacobian_before, st.min_scaled_jacobian_after, st.collapses,
+                  st.flips_2_3 + st.flips_3_2 + st.flips_4_4 + st.edge_removals, st.vertex_moves, st.node_moves);
   }
 
   {

@@ -17,7 +17,7 @@
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/mesh/tet_mesh.hpp"
 #include "curvetet/shell/build.hpp"
-#include "curvetet/volume/curved_optimize.hpp"
+#include "curvetet/volume/curved_remesh.hpp"
 
 #include <optional>
 
@@ -39,7 +39,7 @@ struct PipelineOptions {
   FillRegion fill = FillRegion::interior;
   double box_margin = 0.1;             // --fill all: the box grows the top's bbox by this x diagonal per side
   bool optimize = true;                // curved optimization after the assembly
-  volume::CurvedOptimizeOptions optimization;
+  volume::CurvedRemeshOptions optimization;
 };
 
 struct PipelineResult {

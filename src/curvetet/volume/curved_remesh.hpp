@@ -1,0 +1,54 @@
+#pragma once
+// Curved optimization with topology changes (paper §4.3, end; DESIGN.md §9):
+// on the assembled order-P mesh, edge collapses, 2-3 / 3-2 / 4-4 flips and
+// edge removals (volume/edit/operations.hpp) and the smoothing of
+// curved_optimize.hpp, every new tet certified positive by the Bernstein
+// certificate before it is committed, the boundary (the curved middle
+// surface), its nodes and the feature curves never changed.
+//
+// Schedule, per round (quality first, then coarseness):
+//  1. quality: the tets whose max AMIPS exceeds target_amips, worst first;
+//     for each, every operation on its edges and faces is tried and the one
+//     whose new tets have the lowest max AMIPS is kept, if that is below the
+//     old star's max AMIPS;
+//  2. coarsening: edges with a free end, shortest first; a collapse is kept
+//     when its new tets stay under collapse_amips (or under the old star's
+//     max AMIPS, when that is higher);
+//  3. smoothing (optimize_curved).
+// No operation takes a tet below min(min_scaled_jacobian, the old star's
+// min scaled Jacobian). Rounds stop when one changes nothing. Sequential, so
+// the result does not depend on the thread count.
+// AMIPS in the validator's convention (highorder/quality.hpp).
+#include "curvetet/mesh/tet_mesh.hpp"
+#include "curvetet/volume/curved_optimize.hpp"
+#include "curvetet/volume/edit/invariants.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace curvetet::volume {
+
+struct CurvedRemeshOptions {
+  int rounds = 4;
+  double target_amips = 9;           // the quality pass visits tets above this...
+  int max_quality_visits = 4096;     // ...the worst this many per round at most
+  double collapse_amips = 30;        // a coarsening collapse may create tets up to this
+  double min_scaled_jacobian = 0.05; // floor (see above)
+  bool collapse = true, flip = true, smooth = true;
+  CurvedOptimizeOptions smoothing;
+};
+
+struct CurvedRemeshStats {
+  int tets_before = 0, tets_after = 0;
+  double max_amips_before = 0, mean_amips_before = 0, min_scaled_jacobian_before = 0;
+  double max_amips_after = 0, mean_amips_after = 0, min_scaled_jacobian_after = 0;
+  long collapses = 0, flips_2_3 = 0, flips_3_2 = 0, flips_4_4 = 0, edge_removals = 0; // accepted
+  edit::RejectCounts rejected{};
+  int vertex_moves = 0, node_moves = 0; // smoothing
+  int rounds = 0;
+  double seconds = 0;
+  nlohmann::json json() const;
+};
+
+CurvedRemeshStats remesh_curved(mesh::TetMesh& mesh, const CurvedRemeshOptions& options = {});
+
+} // namespace curvetet::volume

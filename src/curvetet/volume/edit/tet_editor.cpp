@@ -1,0 +1,267 @@
+#include "curvetet/volume/edit/tet_editor.hpp"
+
+#include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/highorder/quality.hpp"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+namespace curvetet::volume::edit {
+namespace {
+
+std::array<int, 3> sorted(int a, int b, int c) {
+  std::array<int, 3> k{a, b, c};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+} // namespace
+
+TetEditor::TetEditor(const mesh::TetMesh& m) : order_(m.order), np_(m.tet_nodes()) {
+  source_.order = m.order;
+  source_.boundary = m.boundary;
+  source_.boundary_tags = m.boundary_tags;
+  source_.lines = m.lines;
+  source_.line_tags = m.line_tags;
+  source_.groups = m.groups;
+  for (int i = 0; i < np_; ++i) {
+    const auto n = highorder::tet_node(order_, i);
+    weights_.push_back({order_ - n[0] - n[1] - n[2], n[0], n[1], n[2]});
+  }
+  nodes_ = m.nodes;
+  key_of_.assign(nodes_.size(), Key{});
+  key_of_.front().fill(-1);
+  std::fill(key_of_.begin(), key_of_.end(), key_of_.front());
+  refs_.assign(nodes_.size(), 0);
+  incident_.resize(nodes_.size());
+  frozen_.assign(nodes_.size(), 0);
+
+  const int n = m.num_tets();
+  corners_.resize(n);
+  tet_nodes_.assign(m.tets.begin(), m.tets.end());
+  tags_.resize(n);
+  alive_.assign(n, 1);
+  shapes_.resize(n);
+  std::map<std::array<int, 3>, int> face_uses;
+  for (int t = 0; t < n; ++t) {
+    for (int k = 0; k < 4; ++k) corners_[t][k] = m.tet(t)[k];
+    tags_[t] = m.tet_tags.empty() ? 0 : m.tet_tags[t];
+    for (int i = 0; i < np_; ++i) {
+      const int id = m.tet(t)[i];
+      const Key key = node_key(corners_[t], i);
+      if (key_of_[id][0] >= 0 && key_of_[id] != key) throw std::invalid_argument("TetEditor: node shared by two lattice points");
+      const auto [it, inserted] = node_of_.try_emplace(key, id);
+      if (!inserted && it->second != id)
+        throw std::invalid_argument("TetEditor: the mesh is not conforming (one lattice point, two nodes)");
+      key_of_[id] = key;
+    }
+    for (const auto& f : highorder::kTetFaces) ++face_uses[sorted(corners_[t][f[0]], corners_[t][f[1]], corners_[t][f[2]])];
+    link(t);
+    ++live_;
+  }
+  const int tn = m.triangle_nodes();
+  for (int b = 0; b < m.num_boundary(); ++b) {
+    const int* ids = m.boundary_triangle(b);
+    boundary_faces_.insert(sorted(ids[0], ids[1], ids[2]));
+    for (int k = 0; k < 3; ++k) frozen_[ids[k]] = 1;
+    for (int k = 0; k < tn; ++k) ref(ids[k]); // pinned
+  }
+  for (int id : m.lines) ref(id);
+  for (const auto& [f, uses] : face_uses)
+    if (uses == 1) {
+      for (int v : f) frozen_[v] = 1;
+      boundary_faces_.insert(f);
+    }
+  for (int t = 0; t < n; ++t) shapes_[t] = evaluate(t);
+}
+
+TetEditor::Key TetEditor::node_key(const Corners& c, int local) const {
+  std::array<std::pair<int, int>, 4> pairs;
+  int used = 0;
+  for (int k = 0; k < 4; ++k)
+    if (weights_[local][k] > 0) pairs[used++] = {c[k], weights_[local][k]};
+  for (int i = 1; i < used; ++i) // insertion sort by vertex (at most 4)
+    for (int j = i; j > 0 && pairs[j].first < pairs[j - 1].first; --j) std::swap(pairs[j], pairs[j - 1]);
+  Key key;
+  key.fill(-1);
+  for (int k = 0; k < used; ++k) {
+    key[2 * k] = pairs[k].first;
+    key[2 * k + 1] = pairs[k].second;
+  }
+  return key;
+}
+
+void TetEditor::positions(int t, Vec3* out) const {
+  const int* ids = nodes(t);
+  for (int i = 0; i < np_; ++i) out[i] = nodes_[ids[i]];
+}
+
+bool TetEditor::is_boundary_face(int a, int b, int c) const { return boundary_faces_.count(sorted(a, b, c)) > 0; }
+
+bool TetEditor::has_edge(int a, int b) const {
+  for (int t : incident_[a]) {
+    const auto& c = corners_[t];
+    if (std::find(c.begin(), c.end(), b) != c.end()) return true;
+  }
+  return false;
+}
+
+bool TetEditor::has_face(int a, int b, int c) const {
+  for (int t : incident_[a]) {
+    const auto& k = corners_[t];
+    if (std::find(k.begin(), k.end(), b) != k.end() && std::find(k.begin(), k.end(), c) != k.end()) return true;
+  }
+  return false;
+}
+
+void TetEditor::ref(int node) {
+  if (refs_[node]++ == 0) node_of_.emplace(key_of_[node], node);
+}
+
+void TetEditor::unref(int node) {
+  if (--refs_[node] == 0) node_of_.erase(key_of_[node]);
+}
+
+void TetEditor::link(int t) {
+  for (int v : corners_[t]) incident_[v].push_back(t);
+  const int* ids = nodes(t);
+  for (int i = 0; i < np_; ++i) ref(ids[i]);
+}
+
+void TetEditor::unlink(int t) {
+  for (int v : corners_[t]) {
+    auto& list = incident_[v];
+    list.erase(std::find(list.begin(), list.end(), t));
+  }
+  const int* ids = nodes(t);
+  for (int i = 0; i < np_; ++i) unref(ids[i]);
+}
+
+TetShape TetEditor::evaluate(int t) const {
+  Vec3 x[165]; // order <= 8
+  positions(t, x);
+  const auto q = highorder::tet_quality(order_, x);
+  return {q.max_amips, q.min_scaled_jacobian};
+}
+
+void TetEditor::refresh_shape(int t) { shapes_[t] = evaluate(t); }
+
+void TetEditor::begin() {
+  if (open_) throw std::logic_error("TetEditor: nested transaction");
+  open_ = true;
+  journal_.clear();
+  added_.clear();
+  killed_.clear();
+}
+
+void TetEditor::kill(int t) {
+  if (!alive_[t]) throw std::logic_error("TetEditor: kill of a dead tet");
+  unlink(t);
+  alive_[t] = 0;
+  --live_;
+  journal_.push_back({Op::kill, t, Vec3::Zero()});
+  killed_.push_back(t);
+}
+
+int TetEditor::add(const Corners& c, int tag) {
+  const int t = num_slots();
+  corners_.push_back(c);
+  tags_.push_back(tag);
+  alive_.push_back(1);
+  tet_nodes_.resize(tet_nodes_.size() + np_);
+  int* ids = tet_nodes_.data() + static_cast<std::size_t>(t) * np_;
+  for (int i = 0; i < np_; ++i) {
+    const Key key = node_key(c, i);
+    const auto it = node_of_.find(key);
+    if (it != node_of_.end()) {
+      ids[i] = it->second;
+      continue;
+    }
+    // A new node on the straight simplex of its corners.
+    Vec3 p = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) p += (double(weights_[i][k]) / order_) * nodes_[c[k]];
+    const int id = static_cast<int>(nodes_.size());
+    nodes_.push_back(p);
+    key_of_.push_back(key);
+    refs_.push_back(0);
+    incident_.emplace_back();
+    frozen_.push_back(0);
+    journal_.push_back({Op::new_node, id, Vec3::Zero()});
+    ids[i] = id;
+  }
+  link(t); // registers the new nodes' keys (first reference)
+  shapes_.push_back(evaluate(t));
+  ++live_;
+  journal_.push_back({Op::add, t, Vec3::Zero()});
+  added_.push_back(t);
+  return t;
+}
+
+void TetEditor::move_node(int id, const Vec3& p) {
+  journal_.push_back({Op::move, id, nodes_[id]});
+  nodes_[id] = p;
+}
+
+void TetEditor::commit() {
+  open_ = false;
+  journal_.clear();
+}
+
+void TetEditor::rollback() {
+  for (auto e = journal_.rbegin(); e != journal_.rend(); ++e) switch (e->op) {
+      case Op::add:
+        unlink(e->id);
+        corners_.pop_back();
+        tags_.pop_back();
+        alive_.pop_back();
+        shapes_.pop_back();
+        tet_nodes_.resize(tet_nodes_.size() - np_);
+        --live_;
+        break;
+      case Op::kill:
+        alive_[e->id] = 1;
+        link(e->id);
+        ++live_;
+        break;
+      case Op::move: nodes_[e->id] = e->old; break;
+      case Op::new_node:
+        nodes_.pop_back();
+        key_of_.pop_back();
+        refs_.pop_back();
+        incident_.pop_back();
+        frozen_.pop_back();
+        break;
+    }
+  open_ = false;
+  journal_.clear();
+}
+
+mesh::TetMesh TetEditor::to_mesh() const {
+  mesh::TetMesh out = source_;
+  std::vector<int> renumber(nodes_.size(), -1);
+  for (int t = 0; t < num_slots(); ++t) {
+    if (!alive_[t]) continue;
+    const int* ids = nodes(t);
+    for (int i = 0; i < np_; ++i) {
+      int& r = renumber[ids[i]];
+      if (r < 0) {
+        r = static_cast<int>(out.nodes.size());
+        out.nodes.push_back(nodes_[ids[i]]);
+      }
+      out.tets.push_back(r);
+    }
+    out.tet_tags.push_back(tags_[t]);
+  }
+  const auto remap = [&](std::vector<int>& ids) {
+    for (int& id : ids) {
+      if (renumber[id] < 0) throw std::logic_error("TetEditor: a boundary node lost its tets");
+      id = renumber[id];
+    }
+  };
+  remap(out.boundary);
+  remap(out.lines);
+  return out;
+}
+
+} // namespace curvetet::volume::edit

@@ -1,0 +1,128 @@
+#pragma once
+// An editable conforming order-P tet mesh (DESIGN.md §9): the one editor the
+// curved optimization's operations run on. It owns adjacency (live tets per
+// corner vertex), kill/add of tets, and an undo journal: begin() opens a
+// transaction, commit() keeps it, rollback() restores the mesh bit for bit.
+//
+// Nodes are identified by their lattice key: the (corner vertex, integer
+// barycentric weight) pairs with weight > 0 (weights sum to P), as in
+// highorder/conforming_nodes.hpp. A new tet therefore shares the nodes of
+// every edge and face that is still alive in the mesh (curved ones
+// included); an edge, face or interior that does not exist yet gets new nodes
+// on the straight simplex of its corners (paper §4.3: new interior entities
+// start straight). This is only sound while a vertex set names at most one
+// entity, which operations keep (link condition, no duplicate entity).
+//
+// Frozen: the corners of the listed boundary triangles and of hull faces
+// (faces used once). Their nodes, and those of listed boundary triangles and
+// lines, are pinned: they never lose their last reference, so the boundary,
+// its curved nodes and the feature curves never change.
+// Corner vertex ids are node ids of the input mesh; no vertex is created.
+#include "curvetet/mesh/tet_mesh.hpp"
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+namespace curvetet::volume::edit {
+
+using Vec3 = Eigen::Vector3d;
+using Corners = std::array<int, 4>;
+
+// Max AMIPS and min scaled Jacobian of a tet (highorder/quality.hpp).
+struct TetShape {
+  double max_amips = 0;
+  double min_scaled_jacobian = 0;
+};
+
+class TetEditor {
+ public:
+  // Copies the mesh; throws std::invalid_argument if it is not conforming.
+  explicit TetEditor(const mesh::TetMesh& mesh);
+
+  int order() const { return order_; }
+  int nodes_per_tet() const { return np_; }
+
+  // Tet slots, dead ones included (ids stay valid until compaction).
+  int num_slots() const { return static_cast<int>(corners_.size()); }
+  int num_live() const { return live_; }
+  bool alive(int t) const { return alive_[t]; }
+  const Corners& corners(int t) const { return corners_[t]; }
+  const int* nodes(int t) const { return tet_nodes_.data() + static_cast<std::size_t>(t) * np_; }
+  int tag(int t) const { return tags_[t]; }
+  const TetShape& shape(int t) const { return shapes_[t]; }
+  void positions(int t, Vec3* out) const;
+  const Vec3& position(int node) const { return nodes_[node]; }
+
+  // Live tets having corner v (any order).
+  const std::vector<int>& tets_of(int v) const { return incident_[v]; }
+  bool frozen(int v) const { return frozen_[v]; }
+  bool is_boundary_face(int a, int b, int c) const;
+  bool has_edge(int a, int b) const;
+  bool has_face(int a, int b, int c) const;
+
+  // Transactions (not nested). Inside one: kill live tets, add tets (their
+  // shape is evaluated on add), move nodes.
+  void begin();
+  void kill(int t);
+  int add(const Corners& corners, int tag);
+  void move_node(int id, const Vec3& p);
+  const std::vector<int>& added() const { return added_; }
+  const std::vector<int>& killed() const { return killed_; }
+  void commit();
+  void rollback();
+
+  // Re-evaluates the shape of live tet t (after node moves).
+  void refresh_shape(int t);
+
+  // The live mesh, nodes renumbered compactly (boundary, lines, tags and
+  // groups carried over).
+  mesh::TetMesh to_mesh() const;
+
+ private:
+  using Key = std::array<int, 8>; // (vertex, weight) x 4, sorted by vertex, padded with -1
+  struct KeyHash {
+    template <std::size_t N>
+    std::size_t operator()(const std::array<int, N>& k) const {
+      std::size_t h = 0x9e3779b97f4a7c15ull;
+      for (int x : k) h = (h ^ static_cast<std::size_t>(x + 1)) * 0x100000001b3ull;
+      return h;
+    }
+  };
+  Key node_key(const Corners& c, int local) const;
+  void link(int t);   // adjacency and node references of slot t
+  void unlink(int t);
+  void ref(int node);
+  void unref(int node);
+  TetShape evaluate(int t) const;
+
+  enum class Op : std::uint8_t { add, kill, move, new_node };
+  struct Entry {
+    Op op;
+    int id;
+    Vec3 old;
+  };
+
+  mesh::TetMesh source_; // boundary, lines, groups (tets and nodes are ours)
+  int order_ = 1, np_ = 4, live_ = 0;
+  std::vector<std::array<int, 4>> weights_; // per local node: weights on the 4 corners
+  std::vector<Vec3> nodes_;
+  std::vector<Key> key_of_;
+  std::vector<int> refs_;
+  std::unordered_map<Key, int, KeyHash> node_of_;
+  std::vector<Corners> corners_;
+  std::vector<int> tet_nodes_;
+  std::vector<int> tags_;
+  std::vector<char> alive_;
+  std::vector<TetShape> shapes_;
+  std::vector<std::vector<int>> incident_;
+  std::vector<char> frozen_;
+  std::unordered_set<std::array<int, 3>, KeyHash> boundary_faces_; // sorted corner triples
+  bool open_ = false;
+  std::vector<Entry> journal_;
+  std::vector<int> added_, killed_;
+};
+
+} // namespace curvetet::volume::edit
