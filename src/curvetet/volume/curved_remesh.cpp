@@ -62,6 +62,7 @@ class Remesher {
     for (int t : p.kill) e_.kill(t);
     for (const auto& [c, tag] : p.add) e_.add(c, tag);
     if (const auto why = edit::check_new_tets(e_, limits)) {
+      if (getenv("CT_DEBUG")) fprintf(stderr, "  rejected %s (limits %.4g %.4g)\n", edit::to_string(*why).c_str(), limits.max_amips, limits.min_scaled_jacobian);
       e_.rollback();
       ++s_.rejected[static_cast<int>(*why)];
       return false;
@@ -97,7 +98,44 @@ class Remesher {
     else ++s_.edge_removals;
   }
 
-  // Quality pass: worst tets first, the best operation on each.
+  struct Candidate {
+    Proposal p;
+    bool is_collapse = false;
+    double new_max = 0;
+  };
+
+  // Previews every candidate, then runs them best first (lowest new max
+  // AMIPS); keeps the first whose new tets pass the checks under the limits
+  // the caller sets for it (cap = the AMIPS a new tet may reach anyway).
+  bool run_best(std::vector<Candidate>& candidates, double amips_cap) {
+    for (auto& k : candidates) k.new_max = preview(k.p).max_amips;
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const Candidate& a, const Candidate& b) { return a.new_max < b.new_max; });
+    for (const Candidate& k : candidates) {
+      const StarLimits limits = limits_for(k.p, amips_cap);
+      if (!(k.new_max < limits.max_amips)) break; // sorted: none of the rest fits either
+      if (apply(k.p, limits)) {
+        count(k.p, k.is_collapse);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // Collapses of free vertex v onto each of its neighbours.
+  void collapses_of(int v, std::vector<Candidate>& out) {
+    if (e_.frozen(v)) return;
+    for (int w : e_.neighbours(v)) {
+      Proposal p;
+      Reject why;
+      if (edit::collapse(e_, v, w, p, &why)) out.push_back({std::move(p), true});
+      else ++s_.rejected[static_cast<int>(why)];
+    }
+  }
+
+  // Quality pass: worst tets first, the best operation on each (collapses
+  // of its free corners onto any neighbour, removal of its edges, 2-3 flips
+  // of its faces) if it lowers the star's max AMIPS.
   long quality_pass() {
     std::vector<int> bad;
     for (int t = 0; t < e_.num_slots(); ++t)
@@ -107,85 +145,51 @@ class Remesher {
     long done = 0;
     for (int t : bad) {
       if (!e_.alive(t)) continue;
-      struct Candidate {
-        Proposal p;
-        bool is_collapse;
-        double new_max;
-      };
       std::vector<Candidate> candidates;
-      const auto consider = [&](Proposal&& p, bool is_collapse) {
-        const auto shape = preview(p);
-        if (shape.max_amips < old_star(e_, p).max_amips) candidates.push_back({std::move(p), is_collapse, shape.max_amips});
-      };
       const edit::Corners c = e_.corners(t);
-      for (int i = 0; i < 4; ++i)
+      for (int i = 0; i < 4 && o_.collapse; ++i) collapses_of(c[i], candidates);
+      for (int i = 0; i < 4 && o_.flip; ++i)
         for (int j = i + 1; j < 4; ++j) {
-          const int u = c[i], v = c[j];
           Reject why;
-          Proposal p;
-          if (o_.collapse && edit::collapse(e_, u, v, p, &why)) consider(std::move(p), true);
-          if (o_.collapse && edit::collapse(e_, v, u, p, &why)) consider(std::move(p), true);
           std::vector<Proposal> ring;
-          if (o_.flip && edit::remove_edge(e_, u, v, ring, &why))
-            for (auto& r : ring) consider(std::move(r), false);
+          if (edit::remove_edge(e_, c[i], c[j], ring, &why))
+            for (auto& r : ring) candidates.push_back({std::move(r), false});
         }
       for (int f = 0; f < 4 && o_.flip; ++f) {
         Reject why;
         Proposal p;
-        if (edit::flip_face(e_, t, f, p, &why)) consider(std::move(p), false);
+        if (edit::flip_face(e_, t, f, p, &why)) candidates.push_back({std::move(p), false});
       }
-      std::stable_sort(candidates.begin(), candidates.end(),
-                       [](const Candidate& a, const Candidate& b) { return a.new_max < b.new_max; });
-      for (const Candidate& k : candidates) {
-        const auto old = old_star(e_, k.p);
-        if (apply(k.p, {old.max_amips, std::min(o_.min_scaled_jacobian, old.min_scaled_jacobian)})) {
-          count(k.p, k.is_collapse);
-          ++done;
-          break;
-        }
-      }
+      done += run_best(candidates, 0);
     }
     return done;
   }
 
-  // Coarsening pass: collapses, shortest edge first.
+  // Coarsening pass: each free vertex, those with the shortest edge first,
+  // collapses onto its best neighbour if the new tets stay under
+  // collapse_amips (or under the old star's max AMIPS).
   long collapse_pass() {
-    struct Item {
-      double length;
-      int u, v;
-    };
-    std::vector<Item> edges;
-    for (int t = 0; t < e_.num_slots(); ++t) {
-      if (!e_.alive(t)) continue;
-      const auto& c = e_.corners(t);
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) {
-          const int u = std::min(c[i], c[j]), v = std::max(c[i], c[j]);
-          if (e_.frozen(u) && e_.frozen(v)) continue;
-          edges.push_back({(e_.position(u) - e_.position(v)).norm(), u, v});
-        }
+    std::vector<std::pair<double, int>> order;
+    for (int v = 0; v < e_.num_nodes(); ++v) {
+      if (e_.frozen(v) || e_.tets_of(v).empty()) continue;
+      double shortest = std::numeric_limits<double>::infinity();
+      for (int w : e_.neighbours(v)) shortest = std::min(shortest, (e_.position(v) - e_.position(w)).norm());
+      order.emplace_back(shortest, v);
     }
-    std::sort(edges.begin(), edges.end(), [](const Item& a, const Item& b) {
-      return a.length != b.length ? a.length < b.length : std::make_pair(a.u, a.v) < std::make_pair(b.u, b.v);
-    });
-    edges.erase(std::unique(edges.begin(), edges.end(),
-                            [](const Item& a, const Item& b) { return a.u == b.u && a.v == b.v; }),
-                edges.end());
+    std::sort(order.begin(), order.end());
     long done = 0;
-    for (const Item& x : edges) {
-      for (const auto& [a, b] : {std::pair{x.u, x.v}, std::pair{x.v, x.u}}) {
-        if (e_.tets_of(a).empty() || e_.tets_of(b).empty()) break; // stale: an end collapsed already
-        Proposal p;
-        Reject why;
-        if (!edit::collapse(e_, a, b, p, &why)) {
-          if (why != Reject::frozen) ++s_.rejected[static_cast<int>(why)];
-          continue;
-        }
-        if (apply(p, limits_for(p, o_.collapse_amips))) {
-          count(p, true);
-          ++done;
-          break;
-        }
+    for (const auto& [length, v] : order) {
+      if (e_.tets_of(v).empty()) continue;
+      std::vector<Candidate> candidates;
+      collapses_of(v, candidates);
+      const bool ok = run_best(candidates, o_.collapse_amips);
+      done += ok;
+      if (getenv("CT_DEBUG") && !ok) {
+        double old = 0;
+        for (int t : e_.tets_of(v)) old = std::max(old, e_.shape(t).max_amips);
+        fprintf(stderr, "v %d: %zu candidates, old max %.4g:", v, candidates.size(), old);
+        for (auto& k : candidates) fprintf(stderr, " %.4g", k.new_max);
+        fprintf(stderr, "\n");
       }
     }
     return done;
@@ -232,23 +236,33 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
   s.min_scaled_jacobian_before = before.min_scaled_jacobian;
   for (int round = 0; round < o.rounds; ++round) {
     long changed = 0;
+    const auto seconds = [t0 = std::chrono::steady_clock::now()] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
     {
       TetEditor editor(m);
       Remesher r(editor, o, s);
       if (o.collapse || o.flip) changed += r.quality_pass();
+      const double q1 = seconds();
       if (o.collapse) changed += r.collapse_pass();
+      const double c = seconds();
       if (o.collapse || o.flip) changed += r.quality_pass();
       m = editor.to_mesh();
+      logger().debug("curved remesh round {}: quality {:.2f} s, collapses {:.2f} s, quality {:.2f} s", round + 1, q1,
+                     c - q1, seconds() - c);
     }
+    bool smoothing_gained = false;
     if (o.smooth) {
       const auto st = optimize_curved(m, o.smoothing);
       s.vertex_moves += st.vertex_moves;
       s.node_moves += st.node_moves;
-      changed += st.vertex_moves + st.node_moves;
+      smoothing_gained = st.max_amips_after < (1 - o.smoothing.min_gain) * st.max_amips_before ||
+                         st.min_scaled_jacobian_after > (1 + o.smoothing.min_gain) * st.min_scaled_jacobian_before;
     }
     ++s.rounds;
-    logger().debug("curved remesh round {}: {} tets, {} changes", round + 1, m.num_tets(), changed);
-    if (changed == 0) break;
+    logger().debug("curved remesh round {}: {} tets, {} operations", round + 1, m.num_tets(), changed);
+    // Another round pays only when this one changed the topology or the extremes.
+    if (changed == 0 && !smoothing_gained) break;
   }
   const Summary after = summarize(m);
   s.tets_after = m.num_tets();

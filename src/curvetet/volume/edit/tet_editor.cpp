@@ -97,6 +97,16 @@ void TetEditor::positions(int t, Vec3* out) const {
   for (int i = 0; i < np_; ++i) out[i] = nodes_[ids[i]];
 }
 
+std::vector<int> TetEditor::neighbours(int v) const {
+  std::vector<int> out;
+  for (int t : incident_[v])
+    for (int w : corners_[t])
+      if (w != v) out.push_back(w);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 bool TetEditor::is_boundary_face(int a, int b, int c) const { return boundary_faces_.count(sorted(a, b, c)) > 0; }
 
 bool TetEditor::has_edge(int a, int b) const {
@@ -141,6 +151,21 @@ void TetEditor::unlink(int t) {
 TetShape TetEditor::evaluate(int t) const {
   Vec3 x[165]; // order <= 8
   positions(t, x);
+  // A straight tet (every node where its corners' affine map puts it) has a
+  // constant Jacobian: one evaluation gives both measures.
+  const double scale = std::max({(x[1] - x[0]).cwiseAbs().maxCoeff(), (x[2] - x[0]).cwiseAbs().maxCoeff(),
+                                 (x[3] - x[0]).cwiseAbs().maxCoeff()});
+  bool straight = true;
+  for (int i = 4; i < np_ && straight; ++i) {
+    Vec3 affine = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) affine += (double(weights_[i][k]) / order_) * x[k];
+    straight = (x[i] - affine).cwiseAbs().maxCoeff() <= 1e-12 * scale;
+  }
+  if (straight) {
+    Eigen::Matrix3d j;
+    j << x[1] - x[0], x[2] - x[0], x[3] - x[0];
+    return {highorder::amips(j), highorder::scaled_jacobian(j)};
+  }
   const auto q = highorder::tet_quality(order_, x);
   return {q.max_amips, q.min_scaled_jacobian};
 }

@@ -55,9 +55,12 @@ class TetEditor {
   const TetShape& shape(int t) const { return shapes_[t]; }
   void positions(int t, Vec3* out) const;
   const Vec3& position(int node) const { return nodes_[node]; }
+  int num_nodes() const { return static_cast<int>(nodes_.size()); } // ids; corners among them have tets
 
   // Live tets having corner v (any order).
   const std::vector<int>& tets_of(int v) const { return incident_[v]; }
+  // Vertices sharing a live tet with v, ascending.
+  std::vector<int> neighbours(int v) const;
   bool frozen(int v) const { return frozen_[v]; }
   bool is_boundary_face(int a, int b, int c) const;
   bool has_edge(int a, int b) const;
