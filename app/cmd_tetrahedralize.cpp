@@ -61,7 +61,8 @@ Command add_tetrahedralize_command(CLI::App& root) {
                                     {"smooths", s.smooths},                 {"splits", s.splits}, {"relocations", s.relocations},
                                     {"seconds_insert", s.seconds_insert},
                                     {"seconds_layer", s.seconds_layer},     {"seconds_optimize", s.seconds_optimize},
-                                    {"max_amips", s.max_amips},             {"mean_amips", s.mean_amips}};
+                                    {"max_amips", s.max_amips},             {"mean_amips", s.mean_amips},
+                                    {"min_scaled_jacobian", s.min_scaled_jacobian}};
             };
             report["tetrahedralize"] = {{"vertices", r.mesh.num_vertices()},
                                         {"tets", r.mesh.num_tets()},

@@ -36,6 +36,19 @@ TEST(AmipsFrames, MatchesTetQuality) {
     f.frames(nodes.data(), k.data());
     EXPECT_NEAR(f.min_scaled_jacobian(k.data(), nullptr, Eigen::Vector3d::Zero()), expected.min_scaled_jacobian, 1e-12)
         << "order " << p;
+    EXPECT_EQ(static_cast<std::size_t>(f.num_points()), quality_samples(p).size());
+  }
+  // The regular tet: AMIPS 3 (quality.hpp's convention), scaled Jacobian 1.
+  const std::array<Eigen::Vector3d, 4> regular = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
+                                                  Eigen::Vector3d(0.5, std::sqrt(3.0) / 2, 0),
+                                                  Eigen::Vector3d(0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0))};
+  for (int p = 1; p <= 4; ++p) {
+    const auto nodes = straight_tet(p, regular);
+    const AmipsFrames& f = amips_frames(p);
+    std::vector<Eigen::Matrix3d> k(f.num_points());
+    f.frames(nodes.data(), k.data());
+    EXPECT_NEAR(f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero()), 3.0, 1e-9);
+    EXPECT_NEAR(f.min_scaled_jacobian(k.data(), nullptr, Eigen::Vector3d::Zero()), 1.0, 1e-9);
   }
 }
 
@@ -79,6 +92,6 @@ TEST(AmipsFrames, InvertedIsInfiniteAndBoundStopsEarly) {
   std::vector<Eigen::Matrix3d> k(f.num_points());
   f.frames(nodes.data(), k.data());
   const double full = f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero());
-  EXPECT_GE(f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero(), 1.0), 1.0);
+  EXPECT_GE(f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero(), 3.0), 3.0); // AMIPS >= 3 everywhere
   EXPECT_EQ(f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero(), 2 * full), full);
 }

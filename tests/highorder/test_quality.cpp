@@ -1,6 +1,9 @@
-// Quality measures: 1 on the regular tet / equilateral triangle, Verdict's
-// value 1/sqrt(2) on the right-angle unit tet, negative / infinite on an
-// inverted tet; quadrature weights sum to the reference volume.
+// Quality measures in the convention of quality.hpp (validate.py's): AMIPS 3
+// and scaled Jacobian 1 on the regular tet (at every sample point), MIPS 1
+// on the equilateral triangle, Verdict's value 1/sqrt(2) on the right-angle
+// unit tet, negative / infinite on an inverted tet; the samples are the
+// order-2P lattice with its corners, so a worst corner is seen; quadrature
+// weights sum to the reference volume.
 #include "curvetet/highorder/element_map.hpp"
 #include "curvetet/highorder/quadrature.hpp"
 #include "curvetet/highorder/quality.hpp"
@@ -9,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace curvetet::highorder;
@@ -21,11 +25,11 @@ TEST(Quality, RegularRightAndInvertedTets) {
   for (int p = 1; p <= 4; ++p) {
     auto q = tet_quality(p, straight_tet(p, regular).data());
     EXPECT_NEAR(q.min_scaled_jacobian, 1.0, 1e-9);
-    EXPECT_NEAR(q.max_amips, 1.0, 1e-9);
-    EXPECT_NEAR(q.mean_amips, 1.0, 1e-9);
+    EXPECT_NEAR(q.max_amips, 3.0, 1e-9);
+    EXPECT_NEAR(q.mean_amips, 3.0, 1e-9);
     auto r = tet_quality(p, straight_tet(p).data());
     EXPECT_NEAR(r.min_scaled_jacobian, 1 / std::sqrt(2.0), 1e-9);
-    EXPECT_GT(r.max_amips, 1.0);
+    EXPECT_GT(r.max_amips, 3.0);
     auto inv = straight_tet(p, {regular[1], regular[0], regular[2], regular[3]});
     auto i = tet_quality(p, inv.data());
     EXPECT_NEAR(i.min_scaled_jacobian, -1.0, 1e-9);
@@ -35,8 +39,90 @@ TEST(Quality, RegularRightAndInvertedTets) {
   auto c = tet_quality(3, curved.data());
   EXPECT_GT(c.min_scaled_jacobian, 0.5);
   EXPECT_LT(c.min_scaled_jacobian, 1.0);
-  EXPECT_GE(c.mean_amips, 1.0);
+  EXPECT_GE(c.mean_amips, 3.0);
   EXPECT_GE(c.max_amips, c.mean_amips);
+}
+
+const std::array<Eigen::Vector3d, 4> kRegular = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
+                                                 Eigen::Vector3d(0.5, std::sqrt(3.0) / 2, 0),
+                                                 Eigen::Vector3d(0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0))};
+
+// The samples are the order-2P lattice, corners included (validate.py's
+// tet_lattice(2P)); order 1 is one point.
+TEST(Quality, SamplesAreTheOrder2PLatticeWithCorners) {
+  EXPECT_EQ(quality_samples(1).size(), 1u);
+  for (int p = 2; p <= 8; ++p) {
+    const auto& s = quality_samples(p);
+    const int m = 2 * p;
+    EXPECT_EQ(static_cast<int>(s.size()), (m + 1) * (m + 2) * (m + 3) / 6) << "order " << p;
+    for (const Eigen::Vector3d corner : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
+                                         Eigen::Vector3d(0, 0, 1)})
+      EXPECT_TRUE(std::any_of(s.begin(), s.end(), [&](const Eigen::Vector3d& x) { return (x - corner).norm() < 1e-15; }))
+          << "order " << p;
+  }
+}
+
+// The regular tet, as a straight tet of order P and as a (slightly) curved
+// one whose nodes are not where the straight test expects: AMIPS 3 and
+// scaled Jacobian 1 at every sample, at any scale.
+TEST(Quality, RegularTetIsThreeAndOneAtEverySample) {
+  for (int p = 1; p <= 5; ++p)
+    for (double scale : {1e-6, 1.0, 1e4}) {
+      auto nodes = straight_tet(p, kRegular);
+      for (auto& x : nodes) x *= scale;
+      for (const auto& xi : quality_samples(p)) {
+        const Eigen::Matrix3d j = tet_jacobian(p, nodes.data(), xi);
+        EXPECT_NEAR(amips(j), 3.0, 1e-9) << "order " << p;
+        EXPECT_NEAR(scaled_jacobian(j), 1.0, 1e-9) << "order " << p;
+      }
+      const TetQuality q = tet_quality(p, nodes.data());
+      EXPECT_NEAR(q.max_amips, 3.0, 1e-9);
+      EXPECT_NEAR(q.mean_amips, 3.0, 1e-9);
+      EXPECT_NEAR(q.min_scaled_jacobian, 1.0, 1e-9);
+    }
+}
+
+// An order-2 regular tet whose midpoint node of edge 0-1 slides 0.15 toward
+// corner 1: J is affine in xi and most distorted at the corners 0 and 1,
+// where every quadrature point misses it. The reported max AMIPS and min
+// scaled Jacobian are the corner values (no larger, no smaller anywhere on
+// a fine lattice), strictly worse than the quadrature points' (the old
+// sampling).
+TEST(Quality, WorstCornerIsReportedAtItsValue) {
+  auto nodes = straight_tet(2, kRegular);
+  int mid01 = -1;
+  for (int i = 4; i < static_cast<int>(nodes.size()); ++i)
+    if ((nodes[i] - 0.5 * (kRegular[0] + kRegular[1])).norm() < 1e-12) mid01 = i;
+  ASSERT_GE(mid01, 4);
+  nodes[mid01] += 0.15 * (kRegular[1] - kRegular[0]);
+  double corner_amips = 0, corner_sj = 1e300;
+  for (const Eigen::Vector3d xi : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
+                                   Eigen::Vector3d(0, 0, 1)}) {
+    const Eigen::Matrix3d j = tet_jacobian(2, nodes.data(), xi);
+    corner_amips = std::max(corner_amips, amips(j));
+    corner_sj = std::min(corner_sj, scaled_jacobian(j));
+  }
+  const TetQuality q = tet_quality(2, nodes.data());
+  EXPECT_DOUBLE_EQ(q.max_amips, corner_amips);
+  EXPECT_DOUBLE_EQ(q.min_scaled_jacobian, corner_sj);
+  // Nowhere worse (an order-16 lattice).
+  const int m = 16;
+  for (int a = 0; a <= m; ++a)
+    for (int b = 0; a + b <= m; ++b)
+      for (int c = 0; a + b + c <= m; ++c) {
+        const Eigen::Matrix3d j = tet_jacobian(2, nodes.data(), Eigen::Vector3d(a, b, c) / m);
+        EXPECT_LE(amips(j), corner_amips * (1 + 1e-12));
+        EXPECT_GE(scaled_jacobian(j), corner_sj * (1 - 1e-12));
+      }
+  // The quadrature points see less.
+  double quadrature_amips = 0;
+  for (const auto& xi : tet_quadrature(3).points)
+    quadrature_amips = std::max(quadrature_amips, amips(tet_jacobian(2, nodes.data(), xi)));
+  EXPECT_LT(quadrature_amips, corner_amips * 0.99);
+  // The mean is the plain mean over the samples.
+  double sum = 0;
+  for (const auto& xi : quality_samples(2)) sum += amips(tet_jacobian(2, nodes.data(), xi));
+  EXPECT_NEAR(q.mean_amips, sum / static_cast<double>(quality_samples(2).size()), 1e-12 * q.mean_amips);
 }
 
 TEST(Quality, EquilateralTriangleMips) {

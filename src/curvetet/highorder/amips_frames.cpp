@@ -2,7 +2,6 @@
 
 #include "curvetet/highorder/bernstein.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
-#include "curvetet/highorder/quadrature.hpp"
 #include "curvetet/highorder/quality.hpp"
 
 #include <Eigen/Dense>
@@ -22,12 +21,7 @@ AmipsFrames::AmipsFrames(int order) {
   w_.col(2) << 0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0);
   const Eigen::Matrix3d w_inv = w_.inverse();
   nodes_ = tet_node_count(order);
-  std::vector<Eigen::Vector3d> xis;
-  for (int i = 0; i < nodes_; ++i) {
-    const auto p = tet_node(order, i);
-    xis.emplace_back(double(p[0]) / order, double(p[1]) / order, double(p[2]) / order);
-  }
-  for (const auto& xi : tet_quadrature(order + 1).points) xis.push_back(xi);
+  const std::vector<Eigen::Vector3d>& xis = quality_samples(order);
   points_ = static_cast<int>(xis.size());
   h_.resize(nodes_, 3 * points_);
   for (int q = 0; q < points_; ++q) h_.middleCols<3>(3 * q) = lagrange_gradients(3, order, xis[q].data()) * w_inv;
@@ -49,13 +43,13 @@ double AmipsFrames::max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector
                               double bound) const {
   const double bound_cubed = bound * bound * bound;
   double worst_cubed = 0;
-  for (int q = nodes_; q < points_ && worst_cubed < bound_cubed; ++q) {
+  for (int q = 0; q < points_ && worst_cubed < bound_cubed; ++q) {
     Eigen::Matrix3d k = frames[q];
     if (c) k.noalias() += d * c[q].transpose();
     const double det = k.determinant();
     if (!(det > 0)) return std::numeric_limits<double>::infinity();
     const double n2 = k.squaredNorm();
-    worst_cubed = std::max(worst_cubed, n2 * n2 * n2 / (27 * det * det));
+    worst_cubed = std::max(worst_cubed, n2 * n2 * n2 / (det * det));
   }
   return std::cbrt(worst_cubed);
 }

@@ -1,16 +1,18 @@
 #pragma once
-// Quality of an order-P tet at the sample points of tet_quality (first its
-// Lagrange nodes, then its quadrature points), kept as frames so that the
-// optimizer can try node moves without recomputing the Jacobians.
+// Quality of an order-P tet at the sample points of the quality convention
+// (quality.hpp: quality_samples(P), the order-2P lattice with its corners,
+// which contains the Lagrange nodes), kept as frames so that the optimizer
+// can try node moves without recomputing the Jacobians.
 //
 // Frame q of a tet with nodes x_l: K_q = J(xi_q) W^-1 = sum_l x_l h_{l,q}^T,
 // h_{l,q} = W^-T grad phi_l(xi_q) (W as in quality.hpp). Moving node l by
 // w_l d changes every frame by the rank-one term d c_q^T with
 // c_q = sum_l w_l h_{l,q}, so a trial move costs one 3x3 update per point
-// instead of a sum over all nodes. AMIPS(K) = |K|_F^2 / (3 det(K)^(2/3))
-// (+inf when det K <= 0), max over the quadrature points, taken on AMIPS^3,
-// which needs no cube root per point and has the same maximiser. The scaled
-// Jacobian (quality.hpp) of J = K W, min over all points.
+// instead of a sum over all nodes. AMIPS(K) = |K|_F^2 / det(K)^(2/3) (3 for
+// the regular tet, +inf when det K <= 0: quality.hpp's amips), max over all
+// points, taken on AMIPS^3, which needs no cube root per point and has the
+// same maximiser. The scaled Jacobian (quality.hpp) of J = K W, min over
+// all points. Both equal tet_quality's.
 #include <Eigen/Core>
 
 #include <limits>
@@ -21,7 +23,7 @@ namespace curvetet::highorder {
 class AmipsFrames {
  public:
   explicit AmipsFrames(int order); // 1..8
-  int num_points() const { return points_; } // nodes, then quadrature points
+  int num_points() const { return points_; } // quality_samples(order)
   int num_nodes() const { return nodes_; }
 
   // frames[q] = K_q for q < num_points(); nodes in internal (Gmsh) order.
@@ -29,7 +31,7 @@ class AmipsFrames {
   // c[q] += w h_{local,q} for every point q.
   void add_direction(int local, double w, Eigen::Vector3d* c) const;
 
-  // Max over quadrature points of AMIPS(K_q + d c_q^T) (c == nullptr: of
+  // Max over all points of AMIPS(K_q + d c_q^T) (c == nullptr: of
   // K_q). Stops at the first point reaching `bound` (the result is then >= bound).
   double max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,
                    double bound = std::numeric_limits<double>::infinity()) const;

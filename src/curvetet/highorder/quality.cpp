@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "curvetet/highorder/bernstein.hpp"
+#include "curvetet/highorder/simplex_lattice.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -31,33 +32,52 @@ const Eigen::Matrix3d& regular_tet_inverse() {
   return inv;
 }
 
-// Lagrange gradients at the sample points of tet_quality, once per order:
-// first the nodes (scaled Jacobian only), then the quadrature points.
+// Per order: the sample points of the convention (quality.hpp), the
+// Lagrange gradients there, and the nodes' reference coordinates (for the
+// straight-tet test).
 struct TetSamples {
+  std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::MatrixXd> gradients; // N x 3 each
-  std::size_t num_nodes = 0;
-  std::vector<double> weights; // quadrature points only
+  std::vector<Eigen::Vector3d> node_xi;
 };
 
 const TetSamples& tet_samples(int order) {
+  if (order < 1 || order > kMaxOrder) throw std::invalid_argument("tet_quality: order must be 1..8");
   static std::unique_ptr<TetSamples> cache[kMaxOrder + 1];
   static std::once_flag once[kMaxOrder + 1];
   std::call_once(once[order], [order] {
     auto s = std::make_unique<TetSamples>();
+    if (order == 1) {
+      s->points.emplace_back(0.25, 0.25, 0.25);
+    } else {
+      const SimplexLattice& l = lattice(3, 2 * order);
+      for (int i = 0; i < l.size(); ++i)
+        s->points.emplace_back(l[i][1] / (2.0 * order), l[i][2] / (2.0 * order), l[i][3] / (2.0 * order));
+    }
+    for (const auto& xi : s->points) s->gradients.push_back(lagrange_gradients(3, order, xi.data()));
     for (int i = 0; i < tet_node_count(order); ++i) {
-      auto p = tet_node(order, i);
-      const double xi[3] = {double(p[0]) / order, double(p[1]) / order, double(p[2]) / order};
-      s->gradients.push_back(lagrange_gradients(3, order, xi));
+      const auto p = tet_node(order, i);
+      s->node_xi.emplace_back(double(p[0]) / order, double(p[1]) / order, double(p[2]) / order);
     }
-    s->num_nodes = s->gradients.size();
-    const Quadrature rule = tet_quadrature(order + 1);
-    for (std::size_t k = 0; k < rule.points.size(); ++k) {
-      s->gradients.push_back(lagrange_gradients(3, order, rule.points[k].data()));
-      s->weights.push_back(rule.weights[k]);
-    }
+    // The straight test below takes the corners as nodes 0..3 at the
+    // reference tet's corners (Gmsh's order).
+    const Eigen::Vector3d corners[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int v = 0; v < 4; ++v)
+      if (s->node_xi[v] != corners[v]) throw std::logic_error("tet_quality: unexpected corner order");
     cache[order] = std::move(s);
   });
   return *cache[order];
+}
+
+// Whether every node sits where the affine map of the corners puts it (to
+// 1e-12 of the tet's size: the test of curved_optimize.cpp's straight());
+// then the Jacobian is the constant edge matrix `e`.
+bool straight(const TetSamples& s, const Eigen::Vector3d* nodes, Eigen::Matrix3d& e) {
+  e << nodes[1] - nodes[0], nodes[2] - nodes[0], nodes[3] - nodes[0];
+  const double scale = e.cwiseAbs().maxCoeff();
+  for (std::size_t i = 4; i < s.node_xi.size(); ++i)
+    if ((nodes[i] - nodes[0] - e * s.node_xi[i]).cwiseAbs().maxCoeff() > 1e-12 * scale) return false;
+  return true;
 }
 
 } // namespace
@@ -82,7 +102,7 @@ double amips(const Eigen::Matrix3d& j) {
   const Eigen::Matrix3d jr = j * regular_tet_inverse();
   const double det = jr.determinant();
   if (!(det > 0)) return std::numeric_limits<double>::infinity();
-  return jr.squaredNorm() / (3.0 * std::cbrt(det * det));
+  return jr.squaredNorm() / std::cbrt(det * det);
 }
 
 double triangle_mips(const Eigen::Matrix<double, 3, 2>& j) {
@@ -95,26 +115,29 @@ double triangle_mips(const Eigen::Matrix<double, 3, 2>& j) {
   return g.trace() / (2.0 * std::sqrt(det));
 }
 
+const std::vector<Eigen::Vector3d>& quality_samples(int order) { return tet_samples(order).points; }
+
 TetQuality tet_quality(int order, const Eigen::Vector3d* nodes) {
-  if (order < 1 || order > kMaxOrder) throw std::invalid_argument("tet_quality: order must be 1..8");
   const TetSamples& samples = tet_samples(order);
-  const int n = tet_node_count(order);
-  Eigen::Matrix<double, 3, Eigen::Dynamic> x(3, n);
-  for (int i = 0; i < n; ++i) x.col(i) = nodes[i];
   TetQuality q;
-  q.min_scaled_jacobian = std::numeric_limits<double>::infinity();
-  double sum = 0, wsum = 0;
-  for (std::size_t k = 0; k < samples.gradients.size(); ++k) {
-    const Eigen::Matrix3d j = x.lazyProduct(samples.gradients[k]);
-    q.min_scaled_jacobian = std::min(q.min_scaled_jacobian, scaled_jacobian(j));
-    if (k < samples.num_nodes) continue;
-    const double w = samples.weights[k - samples.num_nodes];
-    const double e = amips(j);
-    q.max_amips = std::max(q.max_amips, e);
-    sum += w * e;
-    wsum += w;
+  Eigen::Matrix3d e;
+  if (straight(samples, nodes, e)) {
+    q.min_scaled_jacobian = scaled_jacobian(e);
+    q.max_amips = q.mean_amips = amips(e);
+    return q;
   }
-  q.mean_amips = sum / wsum;
+  const int n = tet_node_count(order);
+  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> x(nodes[0].data(), 3, n);
+  q.min_scaled_jacobian = std::numeric_limits<double>::infinity();
+  double sum = 0;
+  for (const auto& g : samples.gradients) {
+    const Eigen::Matrix3d j = x.lazyProduct(g);
+    q.min_scaled_jacobian = std::min(q.min_scaled_jacobian, scaled_jacobian(j));
+    const double a = amips(j);
+    q.max_amips = std::max(q.max_amips, a);
+    sum += a;
+  }
+  q.mean_amips = sum / static_cast<double>(samples.gradients.size());
   return q;
 }
 

@@ -36,8 +36,9 @@ struct CoarsenOptions {
   double epsilon = 0.01;       // distance bound, relative to the input bbox diagonal
   double epsilon_abs = 0;      // absolute override when > 0
   double quality_bound = 30;   // MIPS of new middle triangles may reach max(old, this)
-  // AMIPS of the tets of new lower slabs may reach max(old, this): in thin
-  // regions the shell is thin, and long faces there make flat output tets.
+  // AMIPS (highorder/quality.hpp: 3 for the regular tet) of the tets of new
+  // lower slabs may reach max(old, this): in thin regions the shell is thin,
+  // and long faces there make flat output tets.
   double slab_quality_bound = std::numeric_limits<double>::infinity();
   double split_factor = 3.0;   // split edges longer than this x mean edge length (0: never)
   double target_pillar = 0.02; // zoom target, relative to the diagonal

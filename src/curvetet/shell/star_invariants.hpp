@@ -77,8 +77,9 @@ bool caps_free_of_batch(const StarContext& ctx, const StarCandidate& c, int batc
 double mips(const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Worst linear AMIPS of the 12 tets of the lower slab of a face (bottom
-// corners under middle corners), skipping tets whose whole pillar is pinched
-// (the assembly makes none there); +inf when one is flat or inverted.
+// corners under middle corners; highorder::amips, 3 for the regular tet),
+// skipping tets whose whole pillar is pinched (the assembly makes none
+// there); +inf when one is flat or inverted.
 // Ranking only (double; SlabQuality).
 double lower_slab_amips(const std::array<Vec3, 3>& bottom, const std::array<Vec3, 3>& middle);
 

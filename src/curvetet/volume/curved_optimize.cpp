@@ -142,7 +142,7 @@ class CurvedOptimizer {
         }
         // Moving one high-order node of a straight tet changes its Jacobian
         // by d (x) grad(phi_node), whose sign varies over the tet, so its
-        // true max AMIPS rises (a dip of the max sampled at quadrature
+        // true max AMIPS rises (a dip of the max sampled at the lattice
         // points is an artefact): only try when the worst touched tet is curved.
         if (i >= 4 && straight(worst_of(mv.tets))) continue;
         // A move depends only on its touched tets: if none changed since it
@@ -413,7 +413,7 @@ class CurvedOptimizer {
   std::vector<std::pair<int, int>> uses_;
   std::vector<std::array<double, 4>> barycentric_; // of each local node
   const highorder::AmipsFrames& table_;
-  const int q_; // quadrature points per tet
+  const int q_; // sample points per tet (highorder::quality_samples)
   std::vector<double> amips_;           // max AMIPS per tet
   std::vector<double> sj_;              // min scaled Jacobian per tet
   FrameCache cache_;

@@ -1,9 +1,9 @@
 #pragma once
 // Curved optimization of the assembled mesh (paper §4.3, end; DESIGN.md §1
 // volume::optimize_curved): smoothing that lowers the max AMIPS of the
-// order-P tets and raises their min scaled Jacobian (highorder/quality.hpp:
-// AMIPS at quadrature points, scaled Jacobian at nodes and quadrature
-// points) while the boundary stays exactly where it is.
+// order-P tets and raises their min scaled Jacobian (highorder/quality.hpp's
+// convention: both over the order-2P lattice with its corners; the regular
+// tet's AMIPS is 3) while the boundary stays exactly where it is.
 //
 // Two local moves, each a transaction on the tets it touches:
 //  - vertex move: a corner vertex v not on any listed boundary triangle moves
@@ -38,7 +38,7 @@ struct CurvedOptimizeOptions {
                                 // than this fraction is the last
   double bad_fraction = 0.25;   // a sweep visits tets whose max AMIPS >= this quantile from the top...
   std::size_t max_bad_tets = 8192; // ...the worst this many at most (both goals: a big mesh's sweep stays bounded)...
-  double min_amips = 4.0;       // ...and above this value
+  double min_amips = 12.0;      // ...and above this value (regular tet: 3)
   double min_scaled_jacobian = 0.05; // a sweep also raises tets below this min scaled Jacobian, and no move
                                      // takes a tet below it (or below its own value when already lower)
   int line_search_steps = 6;    // step halvings below the touched tets' shortest edge (steps start at the longest)

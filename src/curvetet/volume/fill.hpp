@@ -46,7 +46,10 @@ struct FillStats {
   std::size_t unrounded_after_first_pass = 0;
   std::size_t collapses = 0, smooths = 0, flips = 0, splits = 0, relocations = 0;
   double seconds_insert = 0, seconds_layer = 0, seconds_optimize = 0;
-  double max_amips = 0, mean_amips = 0;
+  // Of the output's tets, in highorder/quality.hpp's convention (AMIPS of
+  // the regular tet: 3, kReportedAmipsPerEnergy x the fill's own energy,
+  // tet_amips.hpp; scaled Jacobian of the regular tet: 1).
+  double max_amips = 0, mean_amips = 0, min_scaled_jacobian = 0;
   bool direct = false; // filled by fill_direct() (no layer, no BSP)
   // fill_direct(): the offset points added to the surface's vertices (0 on
   // most CAD surfaces), the surface triangles that were then not Delaunay

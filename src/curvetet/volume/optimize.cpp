@@ -3,6 +3,7 @@
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
 #include "curvetet/geometry/predicates.hpp"
+#include "curvetet/highorder/quality.hpp"
 #include "curvetet/volume/mesh_keys.hpp"
 #include "curvetet/volume/tet_amips.hpp"
 
@@ -1618,13 +1619,19 @@ mesh::LinearTetMesh round_and_optimize(ExactTetMesh&& m, int num_keep, const Fil
   left = o.count_rational();
   if (left > 0) throw Error(ExitCode::internal, fmt::format("volume: {} vertices could not be rounded", left));
   auto out = o.extract(num_keep);
-  double sum = 0, mx = 0;
+  // Reported in highorder/quality.hpp's convention: 3 x the fill's energy.
+  double sum = 0, mx = 0, min_sj = out.tets.empty() ? 0 : std::numeric_limits<double>::infinity();
   for (const auto& t : out.tets) {
-    const double e = tet_amips(out.vertices[t[0]], out.vertices[t[1]], out.vertices[t[2]], out.vertices[t[3]]);
+    const auto &a = out.vertices[t[0]], &b = out.vertices[t[1]], &c = out.vertices[t[2]], &d = out.vertices[t[3]];
+    const double e = kReportedAmipsPerEnergy * tet_amips(a, b, c, d);
     sum += e;
     mx = std::max(mx, e);
+    Eigen::Matrix3d j;
+    j << b - a, c - a, d - a;
+    min_sj = std::min(min_sj, highorder::scaled_jacobian(j));
   }
   stats.max_amips = mx;
+  stats.min_scaled_jacobian = min_sj;
   stats.mean_amips = out.tets.empty() ? 0 : sum / static_cast<double>(out.tets.size());
   return out;
 }

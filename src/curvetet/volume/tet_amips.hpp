@@ -14,7 +14,11 @@ namespace curvetet::volume {
 using mesh::Vec3;
 
 // tr(JᵀJ) / (3 det(J)^{2/3}) with J the tet's edge matrix relative to the
-// regular tet: 1 for a regular tet, +inf for a flat or inverted one.
+// regular tet: 1 for a regular tet, +inf for a flat or inverted one. This is
+// the fill's internal energy (its thresholds are in this unit); what is
+// reported (FillStats) is kReportedAmipsPerEnergy times it, the AMIPS of
+// highorder/quality.hpp's convention (regular tet: 3).
+constexpr double kReportedAmipsPerEnergy = 3;
 double tet_amips(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d); // inline, below
 
 // The same energy; `grad` receives its gradient with respect to corner k
