@@ -52,6 +52,14 @@ edit::TetShape old_star(const TetEditor& e, const Proposal& p) {
   return s;
 }
 
+edit::Corners with_vertex(edit::Corners c, int v) {
+  std::replace(c.begin(), c.end(), edit::kNewVertex, v);
+  return c;
+}
+
+constexpr int kPlacementLevels = 5;
+using Vec3 = Eigen::Vector3d;
+
 class Remesher {
  public:
   Remesher(TetEditor& e, const CurvedRemeshOptions& o, CurvedRemeshStats& s) : e_(e), o_(o), s_(s) {}
@@ -60,9 +68,9 @@ class Remesher {
   bool apply(const Proposal& p, const StarLimits& limits) {
     e_.begin();
     for (int t : p.kill) e_.kill(t);
-    for (const auto& [c, tag] : p.add) e_.add(c, tag);
+    const int v = p.adds_vertex ? e_.add_vertex(p.new_vertex) : edit::kNewVertex;
+    for (const auto& [c, tag] : p.add) e_.add(with_vertex(c, v), tag);
     if (const auto why = edit::check_new_tets(e_, limits)) {
-      if (getenv("CT_DEBUG")) fprintf(stderr, "  rejected %s (limits %.4g %.4g)\n", edit::to_string(*why).c_str(), limits.max_amips, limits.min_scaled_jacobian);
       e_.rollback();
       ++s_.rejected[static_cast<int>(*why)];
       return false;
@@ -71,18 +79,55 @@ class Remesher {
     return true;
   }
 
-  // Max AMIPS and min scaled Jacobian the new tets of p would have.
-  edit::TetShape preview(const Proposal& p) {
+  // Max AMIPS the new tets of p would have, or +inf once one reaches bound.
+  // A new vertex is first placed by a pattern search on that max (its
+  // place is kept in p).
+  double preview(Proposal& p, double bound) {
     e_.begin();
     for (int t : p.kill) e_.kill(t);
-    edit::TetShape s{0, std::numeric_limits<double>::infinity()};
-    for (const auto& [c, tag] : p.add) {
-      const auto& shape = e_.shape(e_.add(c, tag));
-      s.max_amips = std::max(s.max_amips, shape.max_amips);
-      s.min_scaled_jacobian = std::min(s.min_scaled_jacobian, shape.min_scaled_jacobian);
-    }
+    const int v = p.adds_vertex ? e_.add_vertex(p.new_vertex) : edit::kNewVertex;
+    std::vector<int> added;
+    for (const auto& [c, tag] : p.add) added.push_back(e_.add(with_vertex(c, v), tag));
+    double worst = star_max(added, bound);
+    if (p.adds_vertex) worst = place_new_vertex(v, added, p.new_vertex, worst, bound);
     e_.rollback();
-    return s;
+    return worst;
+  }
+
+  double star_max(const std::vector<int>& tets, double bound) const {
+    double worst = 0;
+    for (int t : tets) {
+      if (!e_.amips_below(t, bound)) return std::numeric_limits<double>::infinity();
+      worst = std::max(worst, e_.shape(t).max_amips);
+    }
+    return worst;
+  }
+
+  // Pattern search over the 6 axis steps, halving from a quarter of the
+  // star's shortest edge; returns the best max AMIPS, *at its position.
+  double place_new_vertex(int v, const std::vector<int>& tets, Vec3& at, double worst, double bound) {
+    double h = std::numeric_limits<double>::infinity();
+    for (int w : e_.neighbours(v)) h = std::min(h, (e_.position(w) - e_.position(v)).norm());
+    h *= 0.25;
+    for (int level = 0; level < kPlacementLevels; ++level, h *= 0.5) {
+      bool improved = true;
+      while (improved) {
+        improved = false;
+        for (int k = 0; k < 6; ++k) {
+          const Vec3 d = (k % 2 ? -h : h) * Vec3::Unit(k / 2);
+          e_.move_new_vertex(v, d);
+          const double m = star_max(tets, std::min(bound, worst));
+          if (m < worst) {
+            worst = m;
+            improved = true;
+            break;
+          }
+          e_.move_new_vertex(v, -d);
+        }
+      }
+    }
+    at = e_.position(v);
+    return worst;
   }
 
   StarLimits limits_for(const Proposal& p, double amips_cap) const {
@@ -92,6 +137,7 @@ class Remesher {
 
   void count(const Proposal& p, bool is_collapse) {
     if (is_collapse) ++s_.collapses;
+    else if (p.adds_vertex) ++s_.splits;
     else if (p.kill.size() == 2) ++s_.flips_2_3;
     else if (p.kill.size() == 3) ++s_.flips_3_2;
     else if (p.kill.size() == 4) ++s_.flips_4_4;
@@ -108,7 +154,7 @@ class Remesher {
   // AMIPS); keeps the first whose new tets pass the checks under the limits
   // the caller sets for it (cap = the AMIPS a new tet may reach anyway).
   bool run_best(std::vector<Candidate>& candidates, double amips_cap) {
-    for (auto& k : candidates) k.new_max = preview(k.p).max_amips;
+    for (auto& k : candidates) k.new_max = preview(k.p, limits_for(k.p, amips_cap).max_amips);
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const Candidate& a, const Candidate& b) { return a.new_max < b.new_max; });
     for (const Candidate& k : candidates) {
@@ -135,7 +181,8 @@ class Remesher {
 
   // Quality pass: worst tets first, the best operation on each (collapses
   // of its free corners onto any neighbour, removal of its edges, 2-3 flips
-  // of its faces) if it lowers the star's max AMIPS.
+  // of its faces; else a split of one of its edges) if it lowers the star's
+  // max AMIPS.
   long quality_pass() {
     std::vector<int> bad;
     for (int t = 0; t < e_.num_slots(); ++t)
@@ -160,6 +207,20 @@ class Remesher {
         Proposal p;
         if (edit::flip_face(e_, t, f, p, &why)) candidates.push_back({std::move(p), false});
       }
+      if (run_best(candidates, 0)) {
+        ++done;
+        continue;
+      }
+      // Splits (the dearest: their vertex is placed by a search, and they
+      // add tets) only for very bad tets where nothing else helps.
+      if (e_.shape(t).max_amips <= o_.split_amips) continue;
+      candidates.clear();
+      for (int i = 0; i < 4 && o_.split; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          Reject why;
+          Proposal p;
+          if (edit::split(e_, c[i], c[j], p, &why)) candidates.push_back({std::move(p), false});
+        }
       done += run_best(candidates, 0);
     }
     return done;
@@ -182,15 +243,7 @@ class Remesher {
       if (e_.tets_of(v).empty()) continue;
       std::vector<Candidate> candidates;
       collapses_of(v, candidates);
-      const bool ok = run_best(candidates, o_.collapse_amips);
-      done += ok;
-      if (getenv("CT_DEBUG") && !ok) {
-        double old = 0;
-        for (int t : e_.tets_of(v)) old = std::max(old, e_.shape(t).max_amips);
-        fprintf(stderr, "v %d: %zu candidates, old max %.4g:", v, candidates.size(), old);
-        for (auto& k : candidates) fprintf(stderr, " %.4g", k.new_max);
-        fprintf(stderr, "\n");
-      }
+      done += run_best(candidates, o_.collapse_amips);
     }
     return done;
   }
@@ -219,6 +272,7 @@ nlohmann::json CurvedRemeshStats::json() const {
           {"flips_3_2", flips_3_2},
           {"flips_4_4", flips_4_4},
           {"edge_removals", edge_removals},
+          {"splits", splits},
           {"vertex_moves", vertex_moves},
           {"node_moves", node_moves},
           {"rejected", rejections},
@@ -234,35 +288,33 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
   s.max_amips_before = before.max_amips;
   s.mean_amips_before = before.mean_amips;
   s.min_scaled_jacobian_before = before.min_scaled_jacobian;
+  const auto smooth = [&] {
+    if (!o.smooth) return;
+    const auto st = optimize_curved(m, o.smoothing);
+    s.vertex_moves += st.vertex_moves;
+    s.node_moves += st.node_moves;
+  };
+  Summary last = before;
   for (int round = 0; round < o.rounds; ++round) {
     long changed = 0;
-    const auto seconds = [t0 = std::chrono::steady_clock::now()] {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    };
     {
       TetEditor editor(m);
       Remesher r(editor, o, s);
       if (o.collapse || o.flip) changed += r.quality_pass();
-      const double q1 = seconds();
       if (o.collapse) changed += r.collapse_pass();
-      const double c = seconds();
       if (o.collapse || o.flip) changed += r.quality_pass();
       m = editor.to_mesh();
-      logger().debug("curved remesh round {}: quality {:.2f} s, collapses {:.2f} s, quality {:.2f} s", round + 1, q1,
-                     c - q1, seconds() - c);
     }
-    bool smoothing_gained = false;
-    if (o.smooth) {
-      const auto st = optimize_curved(m, o.smoothing);
-      s.vertex_moves += st.vertex_moves;
-      s.node_moves += st.node_moves;
-      smoothing_gained = st.max_amips_after < (1 - o.smoothing.min_gain) * st.max_amips_before ||
-                         st.min_scaled_jacobian_after > (1 + o.smoothing.min_gain) * st.min_scaled_jacobian_before;
-    }
+    smooth();
     ++s.rounds;
-    logger().debug("curved remesh round {}: {} tets, {} operations", round + 1, m.num_tets(), changed);
-    // Another round pays only when this one changed the topology or the extremes.
-    if (changed == 0 && !smoothing_gained) break;
+    const Summary now = summarize(m);
+    logger().debug("curved remesh round {}: {} tets, {} operations, max AMIPS {:.4g}, min scaled Jacobian {:.3g}",
+                   round + 1, m.num_tets(), changed, now.max_amips, now.min_scaled_jacobian);
+    // Another round pays only when this one moved an extreme.
+    const bool gained = now.max_amips < (1 - o.smoothing.min_gain) * last.max_amips ||
+                        now.min_scaled_jacobian > (1 + o.smoothing.min_gain) * last.min_scaled_jacobian;
+    last = now;
+    if (changed == 0 || !gained) break;
   }
   const Summary after = summarize(m);
   s.tets_after = m.num_tets();

@@ -10,13 +10,15 @@
 //  1. quality: the tets whose max AMIPS exceeds target_amips, worst first;
 //     for each, every operation on its edges and faces is tried and the one
 //     whose new tets have the lowest max AMIPS is kept, if that is below the
-//     old star's max AMIPS;
-//  2. coarsening: edges with a free end, shortest first; a collapse is kept
-//     when its new tets stay under collapse_amips (or under the old star's
-//     max AMIPS, when that is higher);
+//     old star's max AMIPS; where none does and the tet is above
+//     split_amips, the same for the splits of its edges;
+//  2. coarsening: each free vertex, those with the shortest edge first,
+//     collapses onto its best neighbour if the new tets stay under
+//     collapse_amips (or under the old star's max AMIPS, when higher);
 //  3. smoothing (optimize_curved).
 // No operation takes a tet below min(min_scaled_jacobian, the old star's
-// min scaled Jacobian). Rounds stop when one changes nothing. Sequential, so
+// min scaled Jacobian). Rounds stop when one changes nothing or moves neither
+// extreme by smoothing.min_gain. Sequential, so
 // the result does not depend on the thread count.
 // AMIPS in the validator's convention (highorder/quality.hpp).
 #include "curvetet/mesh/tet_mesh.hpp"
@@ -29,11 +31,12 @@ namespace curvetet::volume {
 
 struct CurvedRemeshOptions {
   int rounds = 4;
-  double target_amips = 9;           // the quality pass visits tets above this...
+  double target_amips = 15;          // the quality pass visits tets above this...
   int max_quality_visits = 4096;     // ...the worst this many per round at most
   double collapse_amips = 30;        // a coarsening collapse may create tets up to this
+  double split_amips = 100;          // the quality pass splits edges of tets above this only
   double min_scaled_jacobian = 0.05; // floor (see above)
-  bool collapse = true, flip = true, smooth = true;
+  bool collapse = true, flip = true, split = true, smooth = true;
   CurvedOptimizeOptions smoothing;
 };
 
@@ -41,7 +44,7 @@ struct CurvedRemeshStats {
   int tets_before = 0, tets_after = 0;
   double max_amips_before = 0, mean_amips_before = 0, min_scaled_jacobian_before = 0;
   double max_amips_after = 0, mean_amips_after = 0, min_scaled_jacobian_after = 0;
-  long collapses = 0, flips_2_3 = 0, flips_3_2 = 0, flips_4_4 = 0, edge_removals = 0; // accepted
+  long collapses = 0, flips_2_3 = 0, flips_3_2 = 0, flips_4_4 = 0, edge_removals = 0, splits = 0; // accepted
   edit::RejectCounts rejected{};
   int vertex_moves = 0, node_moves = 0; // smoothing
   int rounds = 0;

@@ -7,7 +7,7 @@ namespace {
 
 using Check = bool (*)(const TetEditor&, int t, const StarLimits&);
 
-bool energy_below(const TetEditor& e, int t, const StarLimits& l) { return e.shape(t).max_amips < l.max_amips; }
+bool energy_below(const TetEditor& e, int t, const StarLimits& l) { return e.amips_below(t, l.max_amips); }
 
 bool scaled_jacobian_above(const TetEditor& e, int t, const StarLimits& l) {
   return e.shape(t).min_scaled_jacobian >= l.min_scaled_jacobian;

@@ -154,13 +154,46 @@ bool collapse(const TetEditor& e, int a, int b, Proposal& out, Reject* why) {
   return true;
 }
 
+// The tets on edge ab, if it is interior (closed ring) and in one region.
+bool interior_edge_shell(const TetEditor& e, int a, int b, std::vector<int>& shell, Reject* why) {
+  shell.clear();
+  for (int t : e.tets_of(a))
+    if (has_corner(e.corners(t), b)) shell.push_back(t);
+  if (shell.size() < 3) return *why = Reject::boundary_edge, false;
+  for (int t : shell)
+    if (e.tag(t) != e.tag(shell.front())) return *why = Reject::region, false;
+  for (int t : shell) {
+    const Corners& c = e.corners(t);
+    for (const auto& f : highorder::kTetFaces) {
+      const int x = c[f[0]], y = c[f[1]], z = c[f[2]];
+      const bool on_edge = (x == a || y == a || z == a) && (x == b || y == b || z == b);
+      if (on_edge && e.is_boundary_face(x, y, z)) return *why = Reject::boundary_edge, false;
+    }
+  }
+  return true;
+}
+
+bool split(const TetEditor& e, int a, int b, Proposal& out, Reject* why) {
+  out = {};
+  if (!interior_edge_shell(e, a, b, out.kill, why)) return false;
+  out.adds_vertex = true;
+  out.new_vertex = 0.5 * (e.position(a) + e.position(b));
+  for (int t : out.kill) {
+    Corners c = e.corners(t), d = c;
+    std::replace(c.begin(), c.end(), a, kNewVertex);
+    std::replace(d.begin(), d.end(), b, kNewVertex);
+    out.add.push_back({c, e.tag(t)});
+    out.add.push_back({d, e.tag(t)});
+  }
+  return true;
+}
+
 bool remove_edge(const TetEditor& e, int a, int b, std::vector<Proposal>& out, Reject* why) {
   out.clear();
   std::vector<int> shell;
-  for (int t : e.tets_of(a))
-    if (has_corner(e.corners(t), b)) shell.push_back(t);
+  if (!interior_edge_shell(e, a, b, shell, why)) return false;
   const int n = static_cast<int>(shell.size());
-  if (n < 3 || n > kMaxRing) return *why = Reject::boundary_edge, false;
+  if (n > kMaxRing) return *why = Reject::boundary_edge, false;
   const int region = e.tag(shell.front());
   // Ring: each tet, ordered (a, b, u, w) positively, links u -> w.
   std::vector<std::pair<int, int>> next;

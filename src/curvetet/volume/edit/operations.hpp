@@ -15,6 +15,8 @@
 //                     flip, n = 4: the 4-4 flip, up to kMaxRing) replaced by
 //                     2(n - 2) tets over a triangulation of the ring: one
 //                     proposal per triangulation.
+//  split(a, b)        a new vertex at the midpoint of an interior edge; each
+//                     tet on the edge becomes two.
 //  flip_face(t, f)    the 2-3 flip: the two tets on an interior face become
 //                     three around the edge joining their apexes.
 #include "curvetet/volume/edit/invariants.hpp"
@@ -27,8 +29,11 @@ namespace curvetet::volume::edit {
 
 struct Proposal {
   std::vector<int> kill;
-  std::vector<std::pair<Corners, int>> add; // corners, tag
+  std::vector<std::pair<Corners, int>> add; // corners, tag; kNewVertex = the new vertex
+  bool adds_vertex = false;
+  Vec3 new_vertex = Vec3::Zero();
 };
+constexpr int kNewVertex = -1;
 
 constexpr int kMaxRing = 6; // triangulations: 1, 2, 5, 14 for n = 3..6
 
@@ -36,5 +41,6 @@ constexpr int kMaxRing = 6; // triangulations: 1, 2, 5, 14 for n = 3..6
 bool collapse(const TetEditor& e, int a, int b, Proposal& out, Reject* why);
 bool remove_edge(const TetEditor& e, int a, int b, std::vector<Proposal>& out, Reject* why);
 bool flip_face(const TetEditor& e, int t, int face, Proposal& out, Reject* why);
+bool split(const TetEditor& e, int a, int b, Proposal& out, Reject* why);
 
 } // namespace curvetet::volume::edit

@@ -1,7 +1,6 @@
 #include "curvetet/volume/edit/tet_editor.hpp"
 
 #include "curvetet/highorder/node_ordering.hpp"
-#include "curvetet/highorder/quality.hpp"
 
 #include <algorithm>
 #include <map>
@@ -43,6 +42,7 @@ TetEditor::TetEditor(const mesh::TetMesh& m) : order_(m.order), np_(m.tet_nodes(
   tags_.resize(n);
   alive_.assign(n, 1);
   shapes_.resize(n);
+  shape_known_.assign(n, 0);
   std::map<std::array<int, 3>, int> face_uses;
   for (int t = 0; t < n; ++t) {
     for (int k = 0; k < 4; ++k) corners_[t][k] = m.tet(t)[k];
@@ -73,7 +73,6 @@ TetEditor::TetEditor(const mesh::TetMesh& m) : order_(m.order), np_(m.tet_nodes(
       for (int v : f) frozen_[v] = 1;
       boundary_faces_.insert(f);
     }
-  for (int t = 0; t < n; ++t) shapes_[t] = evaluate(t);
 }
 
 TetEditor::Key TetEditor::node_key(const Corners& c, int local) const {
@@ -148,29 +147,28 @@ void TetEditor::unlink(int t) {
   for (int i = 0; i < np_; ++i) unref(ids[i]);
 }
 
-TetShape TetEditor::evaluate(int t) const {
-  Vec3 x[165]; // order <= 8
-  positions(t, x);
-  // A straight tet (every node where its corners' affine map puts it) has a
-  // constant Jacobian: one evaluation gives both measures.
-  const double scale = std::max({(x[1] - x[0]).cwiseAbs().maxCoeff(), (x[2] - x[0]).cwiseAbs().maxCoeff(),
-                                 (x[3] - x[0]).cwiseAbs().maxCoeff()});
-  bool straight = true;
-  for (int i = 4; i < np_ && straight; ++i) {
-    Vec3 affine = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) affine += (double(weights_[i][k]) / order_) * x[k];
-    straight = (x[i] - affine).cwiseAbs().maxCoeff() <= 1e-12 * scale;
+const TetShape& TetEditor::shape(int t) const {
+  if (!shape_known_[t]) {
+    Vec3 x[165]; // order <= 8
+    positions(t, x);
+    shapes_[t] = *tet_shape(order_, x);
+    shape_known_[t] = 1;
   }
-  if (straight) {
-    Eigen::Matrix3d j;
-    j << x[1] - x[0], x[2] - x[0], x[3] - x[0];
-    return {highorder::amips(j), highorder::scaled_jacobian(j)};
-  }
-  const auto q = highorder::tet_quality(order_, x);
-  return {q.max_amips, q.min_scaled_jacobian};
+  return shapes_[t];
 }
 
-void TetEditor::refresh_shape(int t) { shapes_[t] = evaluate(t); }
+bool TetEditor::amips_below(int t, double bound) const {
+  if (shape_known_[t]) return shapes_[t].max_amips < bound;
+  Vec3 x[165];
+  positions(t, x);
+  const auto s = tet_shape(order_, x, bound);
+  if (!s) return false;
+  shapes_[t] = *s;
+  shape_known_[t] = 1;
+  return true;
+}
+
+void TetEditor::refresh_shape(int t) { shape_known_[t] = 0; }
 
 void TetEditor::begin() {
   if (open_) throw std::logic_error("TetEditor: nested transaction");
@@ -196,7 +194,8 @@ int TetEditor::add(const Corners& c, int tag) {
   alive_.push_back(1);
   tet_nodes_.resize(tet_nodes_.size() + np_);
   int* ids = tet_nodes_.data() + static_cast<std::size_t>(t) * np_;
-  for (int i = 0; i < np_; ++i) {
+  for (int i = 0; i < 4; ++i) ids[i] = c[i];
+  for (int i = 4; i < np_; ++i) {
     const Key key = node_key(c, i);
     const auto it = node_of_.find(key);
     if (it != node_of_.end()) {
@@ -216,16 +215,50 @@ int TetEditor::add(const Corners& c, int tag) {
     ids[i] = id;
   }
   link(t); // registers the new nodes' keys (first reference)
-  shapes_.push_back(evaluate(t));
+  shapes_.emplace_back();
+  shape_known_.push_back(0);
   ++live_;
   journal_.push_back({Op::add, t, Vec3::Zero()});
   added_.push_back(t);
   return t;
 }
 
+int TetEditor::add_vertex(const Vec3& p) {
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.push_back(p);
+  Key key;
+  key.fill(-1);
+  key[0] = id;
+  key[1] = order_;
+  key_of_.push_back(key);
+  refs_.push_back(0);
+  incident_.emplace_back();
+  frozen_.push_back(0);
+  journal_.push_back({Op::new_node, id, Vec3::Zero()});
+  return id;
+}
+
 void TetEditor::move_node(int id, const Vec3& p) {
   journal_.push_back({Op::move, id, nodes_[id]});
   nodes_[id] = p;
+}
+
+void TetEditor::move_new_vertex(int v, const Vec3& d) {
+  std::vector<int> moved;
+  for (int t : incident_[v]) {
+    shape_known_[t] = 0;
+    const int* ids = nodes(t);
+    for (int i = 0; i < np_; ++i) {
+      const int id = ids[i];
+      if (std::find(moved.begin(), moved.end(), id) != moved.end()) continue;
+      const Key& k = key_of_[id];
+      for (int j = 0; j < 8 && k[j] >= 0; j += 2)
+        if (k[j] == v) {
+          move_node(id, nodes_[id] + (double(k[j + 1]) / order_) * d);
+          moved.push_back(id);
+        }
+    }
+  }
 }
 
 void TetEditor::commit() {
@@ -241,6 +274,7 @@ void TetEditor::rollback() {
         tags_.pop_back();
         alive_.pop_back();
         shapes_.pop_back();
+        shape_known_.pop_back();
         tet_nodes_.resize(tet_nodes_.size() - np_);
         --live_;
         break;

@@ -17,8 +17,9 @@
 // (faces used once). Their nodes, and those of listed boundary triangles and
 // lines, are pinned: they never lose their last reference, so the boundary,
 // its curved nodes and the feature curves never change.
-// Corner vertex ids are node ids of the input mesh; no vertex is created.
+// Corner vertex ids are node ids (of the input mesh, or made by add_vertex).
 #include "curvetet/mesh/tet_mesh.hpp"
+#include "curvetet/volume/edit/tet_shape.hpp"
 
 #include <array>
 #include <cstdint>
@@ -30,12 +31,6 @@ namespace curvetet::volume::edit {
 
 using Vec3 = Eigen::Vector3d;
 using Corners = std::array<int, 4>;
-
-// Max AMIPS and min scaled Jacobian of a tet (highorder/quality.hpp).
-struct TetShape {
-  double max_amips = 0;
-  double min_scaled_jacobian = 0;
-};
 
 class TetEditor {
  public:
@@ -52,7 +47,11 @@ class TetEditor {
   const Corners& corners(int t) const { return corners_[t]; }
   const int* nodes(int t) const { return tet_nodes_.data() + static_cast<std::size_t>(t) * np_; }
   int tag(int t) const { return tags_[t]; }
-  const TetShape& shape(int t) const { return shapes_[t]; }
+  // Shape of tet t (evaluated on first use, then cached).
+  const TetShape& shape(int t) const;
+  // Whether tet t's max AMIPS is below bound (stops at the first sample
+  // that is not, without caching).
+  bool amips_below(int t, double bound) const;
   void positions(int t, Vec3* out) const;
   const Vec3& position(int node) const { return nodes_[node]; }
   int num_nodes() const { return static_cast<int>(nodes_.size()); } // ids; corners among them have tets
@@ -66,12 +65,16 @@ class TetEditor {
   bool has_edge(int a, int b) const;
   bool has_face(int a, int b, int c) const;
 
-  // Transactions (not nested). Inside one: kill live tets, add tets (their
-  // shape is evaluated on add), move nodes.
+  // Transactions (not nested). Inside one: kill live tets, add tets, move
+  // nodes.
   void begin();
   void kill(int t);
   int add(const Corners& corners, int tag);
+  int add_vertex(const Vec3& p); // a free vertex (its id), for the tets added next
   void move_node(int id, const Vec3& p);
+  // Moves vertex v (made by add_vertex in the open transaction) by d, and
+  // with it every node of its tets by its weight on v, so they stay straight.
+  void move_new_vertex(int v, const Vec3& d);
   const std::vector<int>& added() const { return added_; }
   const std::vector<int>& killed() const { return killed_; }
   void commit();
@@ -99,7 +102,6 @@ class TetEditor {
   void unlink(int t);
   void ref(int node);
   void unref(int node);
-  TetShape evaluate(int t) const;
 
   enum class Op : std::uint8_t { add, kill, move, new_node };
   struct Entry {
@@ -119,7 +121,8 @@ class TetEditor {
   std::vector<int> tet_nodes_;
   std::vector<int> tags_;
   std::vector<char> alive_;
-  std::vector<TetShape> shapes_;
+  mutable std::vector<TetShape> shapes_;
+  mutable std::vector<char> shape_known_;
   std::vector<std::vector<int>> incident_;
   std::vector<char> frozen_;
   std::unordered_set<std::array<int, 3>, KeyHash> boundary_faces_; // sorted corner triples
