@@ -3,10 +3,10 @@
 // independent yardstick ../shared/tools/validate.py (DESIGN.md §8) within
 // 5 %: max AMIPS (amips_curved_max), mean AMIPS (amips_curved_mean) and min
 // scaled Jacobian (scaled_jacobian_curved_min), in its convention (regular
-// tet: AMIPS 3, scaled Jacobian 1; highorder/quality.hpp). validate.py also
-// samples the degree-3(P-1) Bernstein lattice, so the figures are close, not
-// equal. Skipped only when /usr/bin/python3 lacks numpy or the script is
-// missing.
+// tet: AMIPS 3, scaled Jacobian 1; highorder/quality.hpp, which samples
+// validate.py's points; its mean counts the corners twice, so the means are
+// close, not equal). Skipped only when /usr/bin/python3 lacks numpy or the
+// script is missing.
 #include "curvetet/io/msh.hpp"
 #include "curvetet/io/write_surface.hpp"
 

@@ -2,7 +2,8 @@
 // and scaled Jacobian 1 on the regular tet (at every sample point), MIPS 1
 // on the equilateral triangle, Verdict's value 1/sqrt(2) on the right-angle
 // unit tet, negative / infinite on an inverted tet; the samples are the
-// order-2P lattice with its corners, so a worst corner is seen; quadrature
+// order-2P lattice with its corners and the degree-3(P-1) lattice (as
+// validate.py samples), so a worst corner is seen; quadrature
 // weights sum to the reference volume.
 #include "curvetet/highorder/element_map.hpp"
 #include "curvetet/highorder/quadrature.hpp"
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 using namespace curvetet::highorder;
 using namespace curvetet::highorder::testing;
@@ -47,18 +49,23 @@ const std::array<Eigen::Vector3d, 4> kRegular = {Eigen::Vector3d(0, 0, 0), Eigen
                                                  Eigen::Vector3d(0.5, std::sqrt(3.0) / 2, 0),
                                                  Eigen::Vector3d(0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0))};
 
-// The samples are the order-2P lattice, corners included (validate.py's
-// tet_lattice(2P)); order 1 is one point.
-TEST(Quality, SamplesAreTheOrder2PLatticeWithCorners) {
+// The samples are validate.py's: the order-2P lattice, corners included
+// (its tet_lattice(2P)), and the degree-3(P-1) lattice, each point once;
+// order 1 is one point.
+TEST(Quality, SamplesAreTheOrder2PAndDegree3PMinus1Lattices) {
   EXPECT_EQ(quality_samples(1).size(), 1u);
   for (int p = 2; p <= 8; ++p) {
     const auto& s = quality_samples(p);
-    const int m = 2 * p;
-    EXPECT_EQ(static_cast<int>(s.size()), (m + 1) * (m + 2) * (m + 3) / 6) << "order " << p;
-    for (const Eigen::Vector3d corner : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
-                                         Eigen::Vector3d(0, 0, 1)})
-      EXPECT_TRUE(std::any_of(s.begin(), s.end(), [&](const Eigen::Vector3d& x) { return (x - corner).norm() < 1e-15; }))
-          << "order " << p;
+    const auto has = [&](const Eigen::Vector3d& y) {
+      return std::count_if(s.begin(), s.end(), [&](const Eigen::Vector3d& x) { return (x - y).norm() < 1e-13; });
+    };
+    const auto size = [](int m) { return (m + 1) * (m + 2) * (m + 3) / 6; };
+    const int a = 2 * p, b = 3 * (p - 1), g = std::gcd(a, b);
+    EXPECT_EQ(static_cast<int>(s.size()), size(a) + size(b) - size(g)) << "order " << p;
+    for (int m : {a, b})
+      for (int i = 0; i <= m; ++i)
+        for (int j = 0; i + j <= m; ++j)
+          for (int l = 0; i + j + l <= m; ++l) EXPECT_EQ(has(Eigen::Vector3d(i, j, l) / m), 1) << "order " << p;
   }
 }
 

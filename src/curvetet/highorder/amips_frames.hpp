@@ -1,7 +1,7 @@
 #pragma once
 // Quality of an order-P tet at the sample points of the quality convention
 // (quality.hpp: quality_samples(P), the order-2P lattice with its corners,
-// which contains the Lagrange nodes), kept as frames so that the optimizer
+// which contains the Lagrange nodes, and the degree-3(P-1) lattice), kept as frames so that the optimizer
 // can try node moves without recomputing the Jacobians.
 //
 // Frame q of a tet with nodes x_l: K_q = J(xi_q) W^-1 = sum_l x_l h_{l,q}^T,

@@ -50,9 +50,16 @@ const TetSamples& tet_samples(int order) {
     if (order == 1) {
       s->points.emplace_back(0.25, 0.25, 0.25);
     } else {
-      const SimplexLattice& l = lattice(3, 2 * order);
-      for (int i = 0; i < l.size(); ++i)
-        s->points.emplace_back(l[i][1] / (2.0 * order), l[i][2] / (2.0 * order), l[i][3] / (2.0 * order));
+      // The order-2P lattice, then the points of the degree-3(P-1) lattice
+      // not on it (alpha / m == beta / n exactly when n alpha == m beta).
+      const int m = 2 * order, n = 3 * (order - 1);
+      const SimplexLattice& a = lattice(3, m);
+      for (int i = 0; i < a.size(); ++i) s->points.emplace_back(a[i][1] / double(m), a[i][2] / double(m), a[i][3] / double(m));
+      const SimplexLattice& b = lattice(3, n);
+      for (int i = 0; i < b.size(); ++i) {
+        const bool on_a = (b[i][1] * m) % n == 0 && (b[i][2] * m) % n == 0 && (b[i][3] * m) % n == 0;
+        if (!on_a) s->points.emplace_back(b[i][1] / double(n), b[i][2] / double(n), b[i][3] / double(n));
+      }
     }
     for (const auto& xi : s->points) s->gradients.push_back(lagrange_gradients(3, order, xi.data()));
     for (int i = 0; i < tet_node_count(order); ++i) {

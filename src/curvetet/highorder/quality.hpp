@@ -14,14 +14,17 @@
 //    the three reference edges e leaving corner v; the min over the frames.
 //    For a straight tet this is Verdict's scaled Jacobian (1 for the regular
 //    tet, <= 0 when inverted).
-//  - A tet of order P is sampled at the points of quality_samples(P): the
-//    order-2P lattice of the reference tet INCLUDING its corners (all
-//    (i, j, l) / 2P with i + j + l <= 2P: it contains the Lagrange nodes).
+//  - A tet of order P is sampled at the points of quality_samples(P), the
+//    points validate.py samples: the order-2P lattice of the reference tet
+//    INCLUDING its corners (all (i, j, l) / 2P with i + j + l <= 2P: it
+//    contains the Lagrange nodes), united with the degree-3(P-1) lattice
+//    (where det J's Bernstein coefficients live; the same lattice for P = 3).
 //    Max AMIPS and min scaled Jacobian are over those points, the tet's mean
 //    AMIPS is their plain mean, and a mesh's mean AMIPS is the plain mean of
 //    its tets' means (validate.py's amips_curved_max, amips_curved_mean,
-//    scaled_jacobian_curved_min). Order 1 (and any straight tet): J is
-//    constant, one evaluation stands for every point.
+//    scaled_jacobian_curved_min; its mean counts the 4 corners, on both
+//    lattices, twice). Order 1 (and any straight tet): J is constant, one
+//    evaluation stands for every point.
 // (volume/tet_amips.hpp's linear-fill energy is a third of this AMIPS; what
 // the fill reports is converted to this convention.)
 //
@@ -47,8 +50,9 @@ TetQuality tet_quality(int order, const Eigen::Vector3d* nodes);
 // (The curved optimization's inner loop uses highorder/amips_frames.hpp.)
 
 // The sample points of the convention, in reference coordinates: the
-// order-2P lattice (canonical order, simplex_lattice.hpp); order 1: the
-// centroid alone (its Jacobian is constant).
+// order-2P lattice (canonical order, simplex_lattice.hpp), then the
+// degree-3(P-1) lattice's points not on it; order 1: the centroid alone (its
+// Jacobian is constant).
 const std::vector<Eigen::Vector3d>& quality_samples(int order);
 
 // Pointwise measures (J = dx/dxi, columns u, v, w).

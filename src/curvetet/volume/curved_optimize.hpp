@@ -2,8 +2,9 @@
 // Curved optimization of the assembled mesh (paper §4.3, end; DESIGN.md §1
 // volume::optimize_curved): smoothing that lowers the max AMIPS of the
 // order-P tets and raises their min scaled Jacobian (highorder/quality.hpp's
-// convention: both over the order-2P lattice with its corners; the regular
-// tet's AMIPS is 3) while the boundary stays exactly where it is.
+// convention: both over the order-2P and degree-3(P-1) lattices with their
+// corners, as validate.py samples; the regular tet's AMIPS is 3) while the
+// boundary stays exactly where it is.
 //
 // Two local moves, each a transaction on the tets it touches:
 //  - vertex move: a corner vertex v not on any listed boundary triangle moves
