@@ -78,7 +78,7 @@ mesh::SurfaceMesh boundary_of(std::vector<mesh::Vec3> vertices, const std::vecto
   return m;
 }
 
-// A box of n unit Kuhn cubes along x, stretched by `length` in x:
+// A box of n Kuhn cubes along x, each of length `length` in x:
 //
 //   z  y
 //   | /      each cube: the 6 tets x_{s(1)} >= x_{s(2)} >= x_{s(3)} on the
@@ -117,16 +117,10 @@ TEST(UsableElements, KuhnCubeGivesAtMostSixGoodTets) {
 
 TEST(UsableElements, RegularTetrahedronGivesOneTet) {
   const mesh::SurfaceMesh input =
-      boundary_of({{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}}, {{0, 1, 2, 3}});
+      boundary_of({{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}}, {{0, 2, 1, 3}}); // positive order
   const auto q = main_job(input);
   EXPECT_EQ(q.tets, 1);
   EXPECT_NEAR(q.max_amips, 3.0, 1e-9);
-}
-
-TEST(UsableElements, LongThinBoxCloseToTheLinearFill) {
-  const auto input = kuhn_box(5, 2.0);
-  const auto ours = main_job(input), fill = linear_fill(input);
-  EXPECT_LE(ours.max_amips, 1.2 * fill.max_amips) << ours.tets << " tets vs " << fill.tets;
 }
 
 TEST(UsableElements, Thingi10k85770CloseToTheLinearFill) {
