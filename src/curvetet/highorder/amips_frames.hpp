@@ -1,7 +1,7 @@
 #pragma once
-// Quality of an order-P tet at the sample points of the quality convention
-// (quality.hpp: quality_samples(P), the order-2P lattice with its corners,
-// which contains the Lagrange nodes, and the degree-3(P-1) lattice), kept as frames so that the optimizer
+// Quality of an order-P tet at the order-2P lattice of the quality
+// convention (quality.hpp: the first quality_lattice_points(P) of
+// quality_samples(P), corners and Lagrange nodes included), kept as frames so that the optimizer
 // can try node moves without recomputing the Jacobians.
 //
 // Frame q of a tet with nodes x_l: K_q = J(xi_q) W^-1 = sum_l x_l h_{l,q}^T,
@@ -23,7 +23,7 @@ namespace curvetet::highorder {
 class AmipsFrames {
  public:
   explicit AmipsFrames(int order); // 1..8
-  int num_points() const { return points_; } // quality_samples(order)
+  int num_points() const { return points_; } // the order-2P lattice
   int num_nodes() const { return nodes_; }
 
   // frames[q] = K_q for q < num_points(); nodes in internal (Gmsh) order.

@@ -124,6 +124,12 @@ double triangle_mips(const Eigen::Matrix<double, 3, 2>& j) {
 
 const std::vector<Eigen::Vector3d>& quality_samples(int order) { return tet_samples(order).points; }
 
+int quality_lattice_points(int order) {
+  if (order == 1) return 1;
+  const int m = 2 * order;
+  return (m + 1) * (m + 2) * (m + 3) / 6;
+}
+
 TetQuality tet_quality(int order, const Eigen::Vector3d* nodes) {
   const TetSamples& samples = tet_samples(order);
   TetQuality q;

@@ -54,6 +54,8 @@ TetQuality tet_quality(int order, const Eigen::Vector3d* nodes);
 // degree-3(P-1) lattice's points not on it; order 1: the centroid alone (its
 // Jacobian is constant).
 const std::vector<Eigen::Vector3d>& quality_samples(int order);
+// How many of them, from the first, make the order-2P lattice (order 1: 1).
+int quality_lattice_points(int order);
 
 // Pointwise measures (J = dx/dxi, columns u, v, w).
 double scaled_jacobian(const Eigen::Matrix3d& j);

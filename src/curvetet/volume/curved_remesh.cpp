@@ -297,24 +297,28 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
   Summary last = before;
   for (int round = 0; round < o.rounds; ++round) {
     long changed = 0;
+    const auto t0 = std::chrono::steady_clock::now();
     {
       TetEditor editor(m);
       Remesher r(editor, o, s);
       if (o.collapse || o.flip) changed += r.quality_pass();
       if (o.collapse) changed += r.collapse_pass();
-      if (o.collapse || o.flip) changed += r.quality_pass();
       m = editor.to_mesh();
     }
+    const auto t1 = std::chrono::steady_clock::now();
     smooth();
     ++s.rounds;
     const Summary now = summarize(m);
-    logger().debug("curved remesh round {}: {} tets, {} operations, max AMIPS {:.4g}, min scaled Jacobian {:.3g}",
-                   round + 1, m.num_tets(), changed, now.max_amips, now.min_scaled_jacobian);
+    logger().debug("curved remesh round {}: {} tets, {} operations ({:.2f} s), smoothing {:.2f} s, max AMIPS {:.4g}, "
+                   "min scaled Jacobian {:.3g}",
+                   round + 1, m.num_tets(), changed, std::chrono::duration<double>(t1 - t0).count(),
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), now.max_amips,
+                   now.min_scaled_jacobian);
     // Another round pays only when this one moved an extreme.
     const bool gained = now.max_amips < (1 - o.smoothing.min_gain) * last.max_amips ||
                         now.min_scaled_jacobian > (1 + o.smoothing.min_gain) * last.min_scaled_jacobian;
     last = now;
-    if (changed == 0 || !gained) break;
+    if (changed < o.min_operations * m.num_tets() || !gained) break;
   }
   const Summary after = summarize(m);
   s.tets_after = m.num_tets();

@@ -15,10 +15,10 @@
 //  2. coarsening: each free vertex, those with the shortest edge first,
 //     collapses onto its best neighbour if the new tets stay under
 //     collapse_amips (or under the old star's max AMIPS, when higher);
-//  3. smoothing (optimize_curved).
+//  3. smoothing (optimize_curved, on the convention's order-2P lattice).
 // No operation takes a tet below min(min_scaled_jacobian, the old star's
-// min scaled Jacobian). Rounds stop when one changes nothing or moves neither
-// extreme by smoothing.min_gain. Sequential, so
+// min scaled Jacobian). Rounds stop when one runs fewer than min_operations
+// (x tets) operations or moves neither extreme by smoothing.min_gain. Sequential, so
 // the result does not depend on the thread count.
 // AMIPS in the validator's convention (highorder/quality.hpp).
 #include "curvetet/mesh/tet_mesh.hpp"
@@ -30,14 +30,19 @@
 namespace curvetet::volume {
 
 struct CurvedRemeshOptions {
-  int rounds = 4;
+  int rounds = 3;
+  double min_operations = 0.02;      // a round with fewer operations (x tets) is the last
   double target_amips = 15;          // the quality pass visits tets above this...
   int max_quality_visits = 4096;     // ...the worst this many per round at most
   double collapse_amips = 30;        // a coarsening collapse may create tets up to this
   double split_amips = 100;          // the quality pass splits edges of tets above this only
   double min_scaled_jacobian = 0.05; // floor (see above)
   bool collapse = true, flip = true, split = true, smooth = true;
-  CurvedOptimizeOptions smoothing;
+  CurvedOptimizeOptions smoothing = [] {
+    CurvedOptimizeOptions o;
+    o.bad_fraction = 0.1; // the topology passes handle the bulk; smoothing polishes the worst
+    return o;
+  }();
 };
 
 struct CurvedRemeshStats {
