@@ -77,7 +77,7 @@ mesh::TetMesh straight_mesh(const std::vector<Vec3>& points, const std::vector<C
 // Unit cube, corner i at (i & 1, i >> 1 & 1, i >> 2 & 1), centre 8. The
 // sides at corner 0 are cut by the diagonals 0-3, 0-5, 0-6, the sides at
 // corner 7 by 7-1, 7-2, 7-4; each of the 12 triangles is coned to the
-// centre (12 tets, only 8 free).
+// centre (12 tets; only the centre is free).
 //
 //        6 ------- 7
 //       /|        /|        z
@@ -103,10 +103,9 @@ mesh::TetMesh cube_with_centre(int order) {
 // face, so the 2-3 flip of 0 1 2 is valid.
 //
 //            3
-//           /|\         tets (0,1,2,3), (1,0,2,4)
-//          / 2 \ .
-//         0 --- 1
-//          \ . /
+//          / | \          tets (0,1,2,3) above z = 0,
+//        0 - 2 - 1        (1,0,2,4) below (2 behind 0-1)
+//          \ | /
 //            4
 mesh::TetMesh bipyramid(int order) {
   const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.25, 0.25, 1}, {0.25, 0.25, -1}};

@@ -183,10 +183,10 @@ class Remesher {
   // of its free corners onto any neighbour, removal of its edges, 2-3 flips
   // of its faces; else a split of one of its edges) if it lowers the star's
   // max AMIPS.
-  long quality_pass() {
+  long quality_pass(double threshold) {
     std::vector<int> bad;
     for (int t = 0; t < e_.num_slots(); ++t)
-      if (e_.alive(t) && e_.shape(t).max_amips > o_.target_amips) bad.push_back(t);
+      if (e_.alive(t) && e_.shape(t).max_amips > threshold) bad.push_back(t);
     std::stable_sort(bad.begin(), bad.end(), [&](int a, int b) { return e_.shape(a).max_amips > e_.shape(b).max_amips; });
     if (static_cast<int>(bad.size()) > o_.max_quality_visits) bad.resize(o_.max_quality_visits);
     long done = 0;
@@ -301,8 +301,11 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
     {
       TetEditor editor(m);
       Remesher r(editor, o, s);
-      if (o.collapse || o.flip) changed += r.quality_pass();
+      if (o.collapse || o.flip) changed += r.quality_pass(o.target_amips);
       if (o.collapse) changed += r.collapse_pass();
+      // The coarsening's worst tets again (a collapse may leave one above
+      // collapse_amips where the old star was worse).
+      if (o.collapse || o.flip) changed += r.quality_pass(o.collapse_amips);
       m = editor.to_mesh();
     }
     const auto t1 = std::chrono::steady_clock::now();

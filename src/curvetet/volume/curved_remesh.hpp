@@ -15,7 +15,8 @@
 //  2. coarsening: each free vertex, those with the shortest edge first,
 //     collapses onto its best neighbour if the new tets stay under
 //     collapse_amips (or under the old star's max AMIPS, when higher);
-//  3. smoothing (optimize_curved, on the convention's order-2P lattice).
+//  3. the quality pass again, for the tets above collapse_amips;
+//  4. smoothing (optimize_curved, on the convention's order-2P lattice).
 // No operation takes a tet below min(min_scaled_jacobian, the old star's
 // min scaled Jacobian). Rounds stop when one runs fewer than min_operations
 // (x tets) operations or moves neither extreme by smoothing.min_gain. Sequential, so

@@ -129,12 +129,9 @@ bool collapse(const TetEditor& e, int a, int b, Proposal& out, Reject* why) {
     if (e.tag(t) != region) continue;
     const auto o = others(e.corners(t), b);
     lb.add_triangle(o[0], o[1], o[2]);
-    // b's boundary faces close its link through a vertex at infinity.
-    for (int i = 0; i < 3; ++i) {
-      const int x = o[i], y = o[(i + 1) % 3];
-      if (e.is_boundary_face(b, x, y)) lb.add_edge(x, y);
-    }
   }
+  // With b on the boundary, its link closes through a vertex at infinity;
+  // a is interior, so lk(a) never holds it: the checks below need no more.
   la.finish();
   lb.finish();
   lab.finish();

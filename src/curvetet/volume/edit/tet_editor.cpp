@@ -187,7 +187,7 @@ void TetEditor::kill(int t) {
   killed_.push_back(t);
 }
 
-int TetEditor::add(const Corners& c, int tag) {
+int TetEditor::add(Corners c, int tag) { // by value: c may be one of ours
   const int t = num_slots();
   corners_.push_back(c);
   tags_.push_back(tag);
@@ -267,6 +267,7 @@ void TetEditor::commit() {
 }
 
 void TetEditor::rollback() {
+  bool moved = false;
   for (auto e = journal_.rbegin(); e != journal_.rend(); ++e) switch (e->op) {
       case Op::add:
         unlink(e->id);
@@ -283,7 +284,10 @@ void TetEditor::rollback() {
         link(e->id);
         ++live_;
         break;
-      case Op::move: nodes_[e->id] = e->old; break;
+      case Op::move:
+        nodes_[e->id] = e->old;
+        moved = true;
+        break;
       case Op::new_node:
         nodes_.pop_back();
         key_of_.pop_back();
@@ -292,6 +296,9 @@ void TetEditor::rollback() {
         frozen_.pop_back();
         break;
     }
+  // Shapes cached while nodes were displaced are stale (rare: the
+  // operations move only new vertices, whose tets the rollback removed).
+  if (moved) std::fill(shape_known_.begin(), shape_known_.end(), 0);
   open_ = false;
   journal_.clear();
 }

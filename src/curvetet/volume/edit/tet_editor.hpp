@@ -69,7 +69,7 @@ class TetEditor {
   // nodes.
   void begin();
   void kill(int t);
-  int add(const Corners& corners, int tag);
+  int add(Corners corners, int tag);
   int add_vertex(const Vec3& p); // a free vertex (its id), for the tets added next
   void move_node(int id, const Vec3& p);
   // Moves vertex v (made by add_vertex in the open transaction) by d, and
