@@ -423,11 +423,9 @@ class CurvedOptimizer {
   std::array<std::vector<long>, 2> failed_at_; // per goal and node: batch where its move last failed
 };
 
-struct Summary {
-  double max_amips = 0, mean_amips = 0, min_scaled_jacobian = 0;
-};
+} // namespace
 
-Summary summarize(const mesh::TetMesh& m) {
+MeshQuality mesh_quality(const mesh::TetMesh& m) {
   const int n = m.num_tets();
   std::vector<highorder::TetQuality> q(n);
   tbb::parallel_for(0, n, [&](int t) {
@@ -435,7 +433,7 @@ Summary summarize(const mesh::TetMesh& m) {
     m.tet_positions(t, nodes.data());
     q[t] = highorder::tet_quality(m.order, nodes.data());
   });
-  Summary s;
+  MeshQuality s;
   s.min_scaled_jacobian = n ? std::numeric_limits<double>::infinity() : 0;
   for (const auto& x : q) {
     s.max_amips = std::max(s.max_amips, x.max_amips);
@@ -445,11 +443,9 @@ Summary summarize(const mesh::TetMesh& m) {
   return s;
 }
 
-} // namespace
-
 CurvedOptimizeStats optimize_curved(mesh::TetMesh& m, const CurvedOptimizeOptions& o) {
   CurvedOptimizeStats stats;
-  const Summary before = summarize(m);
+  const MeshQuality before = mesh_quality(m);
   stats.max_amips_before = before.max_amips;
   stats.mean_amips_before = before.mean_amips;
   stats.min_scaled_jacobian_before = before.min_scaled_jacobian;
@@ -475,7 +471,7 @@ CurvedOptimizeStats optimize_curved(mesh::TetMesh& m, const CurvedOptimizeOption
       if (amips_now > (1 - o.min_gain) * amips_before && sj_now < (1 + o.min_gain) * sj_before) break;
     }
   }
-  const Summary after = summarize(m);
+  const MeshQuality after = mesh_quality(m);
   stats.max_amips_after = after.max_amips;
   stats.mean_amips_after = after.mean_amips;
   stats.min_scaled_jacobian_after = after.min_scaled_jacobian;

@@ -60,4 +60,11 @@ struct CurvedOptimizeStats {
 
 CurvedOptimizeStats optimize_curved(mesh::TetMesh& mesh, const CurvedOptimizeOptions& options = {});
 
+// Max AMIPS, mean AMIPS (plain mean of the tets' means) and min scaled
+// Jacobian of a whole mesh, in highorder/quality.hpp's convention.
+struct MeshQuality {
+  double max_amips = 0, mean_amips = 0, min_scaled_jacobian = 0;
+};
+MeshQuality mesh_quality(const mesh::TetMesh& mesh);
+
 } // namespace curvetet::volume

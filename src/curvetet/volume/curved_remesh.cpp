@@ -5,8 +5,6 @@
 #include "curvetet/volume/edit/operations.hpp"
 #include "curvetet/volume/edit/tet_editor.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -19,28 +17,6 @@ using edit::Proposal;
 using edit::Reject;
 using edit::StarLimits;
 using edit::TetEditor;
-
-struct Summary {
-  double max_amips = 0, mean_amips = 0, min_scaled_jacobian = 0;
-};
-
-Summary summarize(const mesh::TetMesh& m) {
-  const int n = m.num_tets();
-  std::vector<highorder::TetQuality> q(n);
-  tbb::parallel_for(0, n, [&](int t) {
-    std::vector<Eigen::Vector3d> nodes(m.tet_nodes());
-    m.tet_positions(t, nodes.data());
-    q[t] = highorder::tet_quality(m.order, nodes.data());
-  });
-  Summary s;
-  s.min_scaled_jacobian = n ? std::numeric_limits<double>::infinity() : 0;
-  for (const auto& x : q) {
-    s.max_amips = std::max(s.max_amips, x.max_amips);
-    s.mean_amips += x.mean_amips / n;
-    s.min_scaled_jacobian = std::min(s.min_scaled_jacobian, x.min_scaled_jacobian);
-  }
-  return s;
-}
 
 // Worst shape of the tets a proposal kills.
 edit::TetShape old_star(const TetEditor& e, const Proposal& p) {
@@ -284,7 +260,7 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
   const auto start = std::chrono::steady_clock::now();
   CurvedRemeshStats s;
   s.tets_before = m.num_tets();
-  const Summary before = summarize(m);
+  const MeshQuality before = mesh_quality(m);
   s.max_amips_before = before.max_amips;
   s.mean_amips_before = before.mean_amips;
   s.min_scaled_jacobian_before = before.min_scaled_jacobian;
@@ -294,7 +270,7 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
     s.vertex_moves += st.vertex_moves;
     s.node_moves += st.node_moves;
   };
-  Summary last = before;
+  MeshQuality last = before;
   for (int round = 0; round < o.rounds; ++round) {
     long changed = 0;
     const auto t0 = std::chrono::steady_clock::now();
@@ -311,7 +287,7 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
     const auto t1 = std::chrono::steady_clock::now();
     smooth();
     ++s.rounds;
-    const Summary now = summarize(m);
+    const MeshQuality now = mesh_quality(m);
     logger().debug("curved remesh round {}: {} tets, {} operations ({:.2f} s), smoothing {:.2f} s, max AMIPS {:.4g}, "
                    "min scaled Jacobian {:.3g}",
                    round + 1, m.num_tets(), changed, std::chrono::duration<double>(t1 - t0).count(),
@@ -324,7 +300,7 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
     last = now;
     if (changed < o.min_operations * m.num_tets() || !gained || now.max_amips <= o.split_amips) break;
   }
-  const Summary after = summarize(m);
+  const MeshQuality after = mesh_quality(m);
   s.tets_after = m.num_tets();
   s.max_amips_after = after.max_amips;
   s.mean_amips_after = after.mean_amips;
