@@ -53,7 +53,7 @@ std::function<int()> add_mesh_options(CLI::App& root) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   root.add_flag("!--no-optimize", o->pipeline.optimize,
-                "Skip the curved optimization (certified smoothing of the inner nodes)");
+                "Skip the curved optimization (certified collapses, flips, splits and smoothing)");
   root.add_flag("!--no-coarsen", o->pipeline.coarsen, "Keep the shell as dense as the input (no coarsening)");
   root.add_flag("!--flat-middle", o->pipeline.curved_middle,
                 "Keep the middle surface flat (straight elements; coarser meshes come from the curved default)");

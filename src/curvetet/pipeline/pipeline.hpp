@@ -4,7 +4,8 @@
 //   shell::build_shell -> shell::coarsen_shell (under epsilon, fitting a
 //   curved middle of degree P-1 in every operation) -> fill inside the bottom
 //   surface (volume::fill_layered on the shell's one-sided extrusion) ->
-//   volume::assemble_curved_mesh -> volume::optimize_curved -> check::verify_tet_mesh.
+//   volume::assemble_curved_mesh -> volume::remesh_curved (certified collapses,
+//   flips, splits and smoothing) -> check::verify_tet_mesh.
 // With a curved middle the assembled tets are certified before the
 // optimization; if any is not positive (seen on nefertiti, see run_pipeline),
 // everything runs again with a flat middle (report "curved_middle_fallback").
