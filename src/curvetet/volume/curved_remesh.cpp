@@ -1,14 +1,12 @@
 #include "curvetet/volume/curved_remesh.hpp"
 
 #include "curvetet/core/log.hpp"
-#include "curvetet/highorder/quality.hpp"
 #include "curvetet/volume/edit/operations.hpp"
 #include "curvetet/volume/edit/tet_editor.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <limits>
-#include <optional>
 
 namespace curvetet::volume {
 namespace {
@@ -40,12 +38,21 @@ class Remesher {
  public:
   Remesher(TetEditor& e, const CurvedRemeshOptions& o, CurvedRemeshStats& s) : e_(e), o_(o), s_(s) {}
 
-  // Runs p as a transaction; keeps it when every new tet passes the checks.
-  bool apply(const Proposal& p, const StarLimits& limits) {
+  // Opens a transaction holding p: its tets killed, its new vertex and tets
+  // added (returned).
+  std::vector<int> stage(const Proposal& p, int* new_vertex = nullptr) {
     e_.begin();
     for (int t : p.kill) e_.kill(t);
     const int v = p.adds_vertex ? e_.add_vertex(p.new_vertex) : edit::kNewVertex;
-    for (const auto& [c, tag] : p.add) e_.add(with_vertex(c, v), tag);
+    if (new_vertex) *new_vertex = v;
+    std::vector<int> added;
+    for (const auto& [c, tag] : p.add) added.push_back(e_.add(with_vertex(c, v), tag));
+    return added;
+  }
+
+  // Runs p as a transaction; keeps it when every new tet passes the checks.
+  bool apply(const Proposal& p, const StarLimits& limits) {
+    stage(p);
     if (const auto why = edit::check_new_tets(e_, limits)) {
       e_.rollback();
       ++s_.rejected[static_cast<int>(*why)];
@@ -59,11 +66,8 @@ class Remesher {
   // A new vertex is first placed by a pattern search on that max (its
   // place is kept in p).
   double preview(Proposal& p, double bound) {
-    e_.begin();
-    for (int t : p.kill) e_.kill(t);
-    const int v = p.adds_vertex ? e_.add_vertex(p.new_vertex) : edit::kNewVertex;
-    std::vector<int> added;
-    for (const auto& [c, tag] : p.add) added.push_back(e_.add(with_vertex(c, v), tag));
+    int v = edit::kNewVertex;
+    const std::vector<int> added = stage(p, &v);
     double worst = star_max(added, bound);
     if (p.adds_vertex) worst = place_new_vertex(v, added, p.new_vertex, worst, bound);
     e_.rollback();
