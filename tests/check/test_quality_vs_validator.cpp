@@ -11,17 +11,15 @@
 #include "curvetet/io/write_surface.hpp"
 
 #include "common/curved_box.hpp"
+#include "support/run_command.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <sys/wait.h>
 
 using namespace curvetet;
 
@@ -29,20 +27,8 @@ namespace {
 
 const std::string kValidator = CURVETET_SHARED_DATA "/../tools/validate.py";
 
-struct Run {
-  int code;
-  std::string out;
-};
-
-Run run(const std::string& cmd) {
-  FILE* p = popen((cmd + " 2>/dev/null").c_str(), "r");
-  Run r{-1, ""};
-  std::array<char, 4096> buf;
-  while (std::size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+// The command's stdout and exit code (stderr dropped: logs).
+test::CommandResult run(const std::string& cmd) { return test::run_command(cmd + " 2>/dev/null"); }
 
 bool validator_available() {
   return std::filesystem::exists(kValidator) &&
@@ -61,7 +47,7 @@ std::filesystem::path temp_dir(const std::string& name) {
 nlohmann::json validator_quality(const std::filesystem::path& msh, const std::string& extra = "") {
   const auto out = msh.parent_path() / (msh.stem().string() + ".validate.json");
   const auto r = run("/usr/bin/python3 " + kValidator + " " + msh.string() + " --out-json " + out.string() + " " + extra);
-  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(r.exit_code, 0) << r.out;
   std::ifstream in(out);
   return nlohmann::json::parse(in).at("quality");
 }
@@ -80,7 +66,7 @@ void expect_agrees(double max_amips, double mean_amips, double min_sj, const nlo
 
 void expect_check_agrees(const std::filesystem::path& msh, const nlohmann::json& v) {
   const auto r = run(std::string(CURVETET_BINARY) + " check " + msh.string() + " --json");
-  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto q = nlohmann::json::parse(r.out)["check"]["quality"];
   expect_agrees(q["max_amips"].get<double>(), q["mean_amips"].get<double>(), q["min_scaled_jacobian"].get<double>(),
                 v, "curvetet check --json");
@@ -108,7 +94,7 @@ TEST(QualityVsValidator, MainJobReportAgreesOnSpot) {
   const auto msh = dir / "spot.msh", report = dir / "spot.json";
   const auto r = run(std::string(CURVETET_BINARY) + " " + input + " -o " + msh.string() + " --report " +
                      report.string());
-  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.out;
   std::ifstream in(report);
   const auto j = nlohmann::json::parse(in);
   const auto v = validator_quality(msh, "--input " + input + " --eps 0.01");
