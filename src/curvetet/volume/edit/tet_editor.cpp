@@ -168,7 +168,10 @@ bool TetEditor::amips_below(int t, double bound) const {
   return true;
 }
 
-void TetEditor::refresh_shape(int t) { shape_known_[t] = 0; }
+void TetEditor::refresh_shape(int t) {
+  shape_known_[t] = 0;
+  if (open_) journal_.push_back({Op::forget_shape, t, Vec3::Zero()}); // undone moves leave it stale again
+}
 
 void TetEditor::begin() {
   if (open_) throw std::logic_error("TetEditor: nested transaction");
@@ -246,7 +249,7 @@ void TetEditor::move_node(int id, const Vec3& p) {
 void TetEditor::move_new_vertex(int v, const Vec3& d) {
   std::vector<int> moved;
   for (int t : incident_[v]) {
-    shape_known_[t] = 0;
+    refresh_shape(t);
     const int* ids = nodes(t);
     for (int i = 0; i < np_; ++i) {
       const int id = ids[i];
@@ -267,7 +270,6 @@ void TetEditor::commit() {
 }
 
 void TetEditor::rollback() {
-  bool moved = false;
   for (auto e = journal_.rbegin(); e != journal_.rend(); ++e) switch (e->op) {
       case Op::add:
         unlink(e->id);
@@ -284,10 +286,8 @@ void TetEditor::rollback() {
         link(e->id);
         ++live_;
         break;
-      case Op::move:
-        nodes_[e->id] = e->old;
-        moved = true;
-        break;
+      case Op::move: nodes_[e->id] = e->old; break;
+      case Op::forget_shape: shape_known_[e->id] = 0; break;
       case Op::new_node:
         nodes_.pop_back();
         key_of_.pop_back();
@@ -296,9 +296,6 @@ void TetEditor::rollback() {
         frozen_.pop_back();
         break;
     }
-  // Shapes cached while nodes were displaced are stale (rare: the
-  // operations move only new vertices, whose tets the rollback removed).
-  if (moved) std::fill(shape_known_.begin(), shape_known_.end(), 0);
   open_ = false;
   journal_.clear();
 }

@@ -80,7 +80,8 @@ class TetEditor {
   void commit();
   void rollback();
 
-  // Re-evaluates the shape of live tet t (after node moves).
+  // Re-evaluates the shape of live tet t (after node moves); inside a
+  // transaction the rollback forgets it again.
   void refresh_shape(int t);
 
   // The live mesh, nodes renumbered compactly (boundary, lines, tags and
@@ -103,7 +104,7 @@ class TetEditor {
   void ref(int node);
   void unref(int node);
 
-  enum class Op : std::uint8_t { add, kill, move, new_node };
+  enum class Op : std::uint8_t { add, kill, move, new_node, forget_shape };
   struct Entry {
     Op op;
     int id;
