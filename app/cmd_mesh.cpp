@@ -54,6 +54,13 @@ std::function<int()> add_mesh_options(CLI::App& root) {
       ->capture_default_str();
   root.add_flag("!--no-optimize", o->pipeline.optimize,
                 "Skip the curved optimization (certified collapses, flips, splits and smoothing)");
+  root.add_option("--thickness", o->pipeline.shell.extrusion.target_thickness,
+                  "Shell pillar length to grow to on each side, relative to the bbox diagonal")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  root.add_flag("--slab-layer", o->pipeline.slab_layer,
+                "Fill inside the shell's bottom surface and keep the bottom slabs (the paper's assembly; by default "
+                "the interior is filled straight on the middle surface whenever all its tets certify)");
   root.add_flag("!--no-coarsen", o->pipeline.coarsen, "Keep the shell as dense as the input (no coarsening)");
   root.add_flag("!--flat-middle", o->pipeline.curved_middle,
                 "Keep the middle surface flat (straight elements; coarser meshes come from the curved default)");

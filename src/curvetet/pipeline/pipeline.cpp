@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <chrono>
@@ -20,6 +21,8 @@
 #include "curvetet/shell/extrusion.hpp"
 #include "curvetet/shell/feature_tracking.hpp"
 #include "curvetet/volume/assemble.hpp"
+#include "curvetet/volume/assemble_middle.hpp"
+#include "curvetet/volume/tetrahedralize.hpp"
 #include "curvetet/volume/fill.hpp"
 
 namespace curvetet::pipeline {
@@ -40,6 +43,9 @@ constexpr double kMiddleQualityBound = 10;
 constexpr double kSlabQualityBound = 150;
 constexpr double kFillCoarsenEnergy = 100;
 constexpr double kFillEdgeFactor = 4;
+// The fill on the middle surface has interior points this many mean
+// boundary edges apart, so that the interior refines with the surface too.
+constexpr double kInteriorSpacing = 2;
 
 // The shell's middle surface as the assembly takes it: its fitted nodes, or
 // the flat triangles (degree 1) when it was not curved.
@@ -91,6 +97,104 @@ int uncertified_tets(const mesh::TetMesh& m) {
         return n;
       },
       std::plus<>());
+}
+
+// Marks for retraction the surface corners (ids < n) of the tets the
+// certificate does not prove positive; returns how many tets those are and
+// (in *added) how many corners it marked.
+int retract_uncertified(const mesh::TetMesh& m, int n, std::vector<char>& retracted, int* added) {
+  std::vector<char> bad(m.num_tets(), 0);
+  tbb::parallel_for(0, m.num_tets(), [&](int t) {
+    std::vector<mesh::Vec3> nodes(m.tet_nodes());
+    m.tet_positions(t, nodes.data());
+    bad[t] = highorder::certify_tet(m.order, nodes.data()).validity != highorder::Validity::positive;
+  });
+  *added = 0;
+  for (int t = 0; t < m.num_tets(); ++t)
+    for (int k = 0; k < 4 && bad[t]; ++k)
+      if (m.tet(t)[k] < n && !retracted[m.tet(t)[k]]) {
+        retracted[m.tet(t)[k]] = 1;
+        ++*added;
+      }
+  return static_cast<int>(std::count(bad.begin(), bad.end(), 1));
+}
+
+// The interior on the middle surface (volume/assemble_middle.hpp): filled
+// with nothing retracted, then, while some tet does not certify, again with
+// its corners retracted to the bottom surface. Returns false (the mesh is
+// then not to be used) when a round retracts nothing new and tets still
+// fail.
+bool assemble_on_middle(const volume::CurvedMiddle& middle, int order, mesh::TetMesh& out, nlohmann::json& report) {
+  const int n = static_cast<int>(middle.bottom.size());
+  std::vector<char> retracted(n, 0);
+  volume::AssemblyStats stats;
+  for (int round = 0;; ++round) {
+    const auto surface = volume::retracted_surface(middle, retracted);
+    volume::TetrahedralizeOptions to;
+    to.fill.interior_spacing = kInteriorSpacing * mesh::mean_edge_length(surface);
+    const auto filled = volume::tetrahedralize(surface, to);
+    out = volume::assemble_retracted(middle, retracted, filled.mesh, order, &stats);
+    int added = 0;
+    const int bad = retract_uncertified(out, n, retracted, &added);
+    logger().debug("assembly on the middle surface, round {}: {} tets not certified", round, bad);
+    if (bad == 0 || added == 0) {
+      const auto count = std::count_if(retracted.begin(), retracted.end(), [](char c) { return c != 0; });
+      report = {{"on", "middle"},   {"rounds", round + 1},          {"retracted_vertices", count - (bad ? 0 : added)},
+                {"fill_tets", stats.fill_tets}, {"slab_tets", stats.slab_tets}, {"boundary_triangles", stats.boundary_triangles},
+                {"uncertified_tets", bad}};
+      return bad == 0;
+    }
+  }
+}
+
+// The paper's assembly: the fill inside the bottom surface (and with --fill
+// all outside the top one) plus the slabs. False when a curved middle's
+// tets are not all certified (*uncertified says how many).
+bool assemble_with_slabs(PipelineResult& r, volume::CurvedMiddle& middle, const PipelineOptions& o, bool featured,
+                         Report& report, int* uncertified) {
+  mesh::LinearTetMesh fill;
+  {
+    StageTimer t(&report, "fill");
+    volume::FillStats stats;
+    fill = fill_inside(shell::bottom_surface(r.shell), o.fill_offset, stats);
+    report["fill"] = {{"tets", fill.num_tets()},
+                      {"max_amips", stats.max_amips},
+                      {"mean_amips", stats.mean_amips},
+                      {"min_scaled_jacobian", stats.min_scaled_jacobian}};
+  }
+
+  mesh::LinearTetMesh exterior;
+  if (o.fill == FillRegion::all) {
+    StageTimer t(&report, "fill exterior");
+    volume::FillStats stats;
+    exterior = fill_outside(shell::top_surface(r.shell), o.fill_offset, o.box_margin, stats);
+    middle.top = r.shell.top;
+    report["fill_exterior"] = {{"tets", exterior.num_tets()},
+                               {"max_amips", stats.max_amips},
+                               {"mean_amips", stats.mean_amips},
+                               {"min_scaled_jacobian", stats.min_scaled_jacobian}};
+  }
+
+  {
+    StageTimer t(&report, "assemble");
+    volume::AssemblyStats stats;
+    r.mesh = volume::assemble_curved_mesh(middle, fill, o.order, &stats,
+                                          o.fill == FillRegion::all ? &exterior : nullptr);
+    if (featured) report["features"]["lines"] = add_feature_lines(r.mesh, r.shell);
+    report["assembly"] = {{"fill_tets", stats.fill_tets},
+                          {"slab_tets", stats.slab_tets},
+                          {"pinched_slab_tets", stats.pinched_slab_tets},
+                          {"boundary_triangles", stats.boundary_triangles}};
+    if (o.fill == FillRegion::all)
+      report["assembly"].update({{"exterior_fill_tets", stats.exterior_fill_tets},
+                                 {"top_slab_tets", stats.top_slab_tets},
+                                 {"box_triangles", stats.box_triangles}});
+    if (uncertified && r.shell.middle_degree > 1 && !r.shell.middle_nodes.empty()) {
+      *uncertified = uncertified_tets(r.mesh);
+      if (*uncertified > 0) return false;
+    }
+  }
+  return true;
 }
 
 // One run of the stages. With a curved middle, returns early with
@@ -155,48 +259,19 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
     middle = middle_of(r.shell);
   }
 
-  mesh::LinearTetMesh fill;
-  {
-    StageTimer t(&report, "fill");
-    volume::FillStats stats;
-    fill = fill_inside(shell::bottom_surface(r.shell), o.fill_offset, stats);
-    report["fill"] = {{"tets", fill.num_tets()},
-                      {"max_amips", stats.max_amips},
-                      {"mean_amips", stats.mean_amips},
-                      {"min_scaled_jacobian", stats.min_scaled_jacobian}};
-  }
-
-  mesh::LinearTetMesh exterior;
-  if (o.fill == FillRegion::all) {
-    StageTimer t(&report, "fill exterior");
-    volume::FillStats stats;
-    exterior = fill_outside(shell::top_surface(r.shell), o.fill_offset, o.box_margin, stats);
-    middle.top = r.shell.top;
-    report["fill_exterior"] = {{"tets", exterior.num_tets()},
-                               {"max_amips", stats.max_amips},
-                               {"mean_amips", stats.mean_amips},
-                               {"min_scaled_jacobian", stats.min_scaled_jacobian}};
-  }
-
-  {
+  // The interior on the middle surface; the paper's assembly (fill inside
+  // the bottom surface, every bottom slab) with --fill all or --slab-layer,
+  // or should some tet of the former not certify.
+  bool assembled = false;
+  if (o.fill == FillRegion::interior && !o.slab_layer) {
     StageTimer t(&report, "assemble");
-    volume::AssemblyStats stats;
-    r.mesh = volume::assemble_curved_mesh(middle, fill, o.order, &stats,
-                                          o.fill == FillRegion::all ? &exterior : nullptr);
-    if (featured) report["features"]["lines"] = add_feature_lines(r.mesh, r.shell);
-    report["assembly"] = {{"fill_tets", stats.fill_tets},
-                          {"slab_tets", stats.slab_tets},
-                          {"pinched_slab_tets", stats.pinched_slab_tets},
-                          {"boundary_triangles", stats.boundary_triangles}};
-    if (o.fill == FillRegion::all)
-      report["assembly"].update({{"exterior_fill_tets", stats.exterior_fill_tets},
-                                 {"top_slab_tets", stats.top_slab_tets},
-                                 {"box_triangles", stats.box_triangles}});
-    if (uncertified && r.shell.middle_degree > 1 && !r.shell.middle_nodes.empty()) {
-      *uncertified = uncertified_tets(r.mesh);
-      if (*uncertified > 0) return r;
-    }
+    assembled = assemble_on_middle(middle, o.order, r.mesh, report["assembly"]);
+    if (assembled && featured) report["features"]["lines"] = add_feature_lines(r.mesh, r.shell);
+    if (!assembled)
+      logger().warn("{} tets of the assembly on the middle surface are not certified; taking the slab assembly",
+                    report["assembly"]["uncertified_tets"].get<int>());
   }
+  if (!assembled && !assemble_with_slabs(r, middle, o, featured, report, uncertified)) return r;
 
   if (o.optimize) {
     StageTimer t(&report, "curved optimization");

@@ -2,10 +2,13 @@
 // The whole pipeline (DESIGN.md §1) as one function from a checked input
 // surface to a curved order-P tet mesh, re-verified:
 //   shell::build_shell -> shell::coarsen_shell (under epsilon, fitting a
-//   curved middle of degree P-1 in every operation) -> fill inside the bottom
-//   surface (volume::fill_layered on the shell's one-sided extrusion) ->
-//   volume::assemble_curved_mesh -> volume::remesh_curved (certified collapses,
-//   flips, splits and smoothing) -> check::verify_tet_mesh.
+//   curved middle of degree P-1 in every operation) -> the interior filled on
+//   the middle surface (volume::assemble_retracted: corners whose tets do
+//   not certify retracted to the bottom surface, round after round) or, with
+//   --fill all or --slab-layer, inside the bottom surface
+//   (volume::fill_layered) plus every slab (volume::assemble_curved_mesh) ->
+//   volume::remesh_curved (certified collapses, flips, splits and smoothing)
+//   -> check::verify_tet_mesh.
 // With a curved middle the assembled tets are certified before the
 // optimization; if any is not positive (seen on nefertiti, see run_pipeline),
 // everything runs again with a flat middle (report "curved_middle_fallback").
@@ -38,6 +41,7 @@ struct PipelineOptions {
   bool curved_middle = true;           // fit a degree P-1 middle while coarsening (else flat)
   double fill_offset = 0.01;           // inward offset of the bottom surface, x its bbox diagonal
   FillRegion fill = FillRegion::interior;
+  bool slab_layer = false;             // interior: always the paper's assembly (fill inside B + bottom slabs)
   double box_margin = 0.1;             // --fill all: the box grows the top's bbox by this x diagonal per side
   bool optimize = true;                // curved optimization after the assembly
   volume::CurvedRemeshOptions optimization;

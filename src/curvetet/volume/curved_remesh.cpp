@@ -47,6 +47,7 @@ class Remesher {
     if (new_vertex) *new_vertex = v;
     std::vector<int> added;
     for (const auto& [c, tag] : p.add) added.push_back(e_.add(with_vertex(c, v), tag));
+    e_.relax_new_nodes();
     return added;
   }
 

@@ -58,6 +58,27 @@ void append_offset_points(const mesh::SurfaceMesh& surface, bool inward, const B
   append_new_points(pts, clear);
 }
 
+// Grid points of the surface's bbox, `spacing` apart, at least half of it
+// from the surface (those outside end in discarded tets).
+void append_interior_points(const mesh::SurfaceMesh& surface, double spacing, std::vector<mesh::Vec3>& pts) {
+  mesh::Vec3 lo = surface.vertices.front(), hi = lo;
+  for (const auto& p : surface.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Eigen::Vector3i n = ((hi - lo) / spacing).array().floor().cast<int>();
+  const mesh::Vec3 start = 0.5 * (lo + hi) - 0.5 * spacing * n.cast<double>();
+  std::vector<mesh::Vec3> grid;
+  for (int i = 0; i <= n.x(); ++i)
+    for (int j = 0; j <= n.y(); ++j)
+      for (int k = 0; k <= n.z(); ++k) grid.push_back(start + spacing * mesh::Vec3(i, j, k));
+  const auto clearance = check::distances_to_surface(surface, grid);
+  std::vector<mesh::Vec3> clear;
+  for (std::size_t i = 0; i < grid.size(); ++i)
+    if (clearance[i] >= 0.5 * spacing) clear.push_back(grid[i]);
+  append_new_points(pts, clear);
+}
+
 } // namespace
 
 std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface, OffsetSide side,
@@ -72,6 +93,7 @@ std::optional<mesh::LinearTetMesh> fill_direct(const mesh::SurfaceMesh& surface,
     box = padded_box(surface.vertices, options.box_margin);
     append_box_points(box, pts);
   }
+  if (inward && options.interior_spacing > 0) append_interior_points(surface, options.interior_spacing, pts);
   BackgroundMesh bg;
   std::vector<std::array<int, 4>> face_of;
   FillStats stats;

@@ -38,6 +38,10 @@ struct FillOptions {
   // > 0: collapses and edge removals create no edge longer than this
   // (absolute), so the interior is as fine as the surface asks for.
   double max_edge_length = 0;
+  // > 0 (fill_direct, inward): the points of a grid of this spacing
+  // (absolute) that are at least half of it from the surface join the
+  // surface's vertices, so the interior is no coarser than the grid.
+  double interior_spacing = 0;
 };
 
 struct FillStats {

@@ -3,6 +3,7 @@
 #include "curvetet/highorder/node_ordering.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <stdexcept>
 
@@ -28,6 +29,12 @@ TetEditor::TetEditor(const mesh::TetMesh& m) : order_(m.order), np_(m.tet_nodes(
     const auto n = highorder::tet_node(order_, i);
     weights_.push_back({order_ - n[0] - n[1] - n[2], n[0], n[1], n[2]});
   }
+  for (int i = 0; i < np_; ++i)
+    for (int j = i + 1; j < np_; ++j) {
+      int l1 = 0;
+      for (int k = 0; k < 4; ++k) l1 += std::abs(weights_[i][k] - weights_[j][k]);
+      if (l1 == 2) lattice_pairs_.emplace_back(i, j);
+    }
   nodes_ = m.nodes;
   key_of_.assign(nodes_.size(), Key{});
   key_of_.front().fill(-1);
@@ -262,6 +269,54 @@ void TetEditor::move_new_vertex(int v, const Vec3& d) {
         }
     }
   }
+}
+
+Vec3 TetEditor::straight_position(int node) const {
+  const Key& k = key_of_[node];
+  Vec3 p = Vec3::Zero();
+  for (int j = 0; j < 8 && k[j] >= 0; j += 2) p += (double(k[j + 1]) / order_) * nodes_[k[j]];
+  return p;
+}
+
+void TetEditor::relax_new_nodes() {
+  constexpr int kSweeps = 8; // Gauss-Seidel; a star is a few node layers deep
+  std::unordered_map<int, int> local; // new node -> index
+  std::vector<int> ids;
+  for (const auto& e : journal_)
+    if (e.op == Op::new_node && key_of_[e.id][1] != order_) {
+      local.emplace(e.id, static_cast<int>(ids.size()));
+      ids.push_back(e.id);
+    }
+  if (ids.empty()) return;
+  // Neighbours of each new node on the lattices of the added tets.
+  std::vector<std::vector<int>> next(ids.size());
+  for (int t : added_) {
+    const int* n = nodes(t);
+    for (const auto& [a, b] : lattice_pairs_) {
+      const auto ia = local.find(n[a]), ib = local.find(n[b]);
+      if (ia != local.end()) next[ia->second].push_back(n[b]);
+      if (ib != local.end()) next[ib->second].push_back(n[a]);
+    }
+  }
+  std::vector<Vec3> d(nodes_.size() - ids.front(), Vec3::Zero()); // displacement of new nodes, by id - first
+  auto displacement = [&](int id) -> Vec3 {
+    const auto it = local.find(id);
+    return it != local.end() ? d[id - ids.front()] : Vec3(nodes_[id] - straight_position(id));
+  };
+  std::vector<std::vector<Vec3>> fixed(ids.size()); // neighbours' displacement where fixed
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    for (int w : next[i])
+      if (!local.count(w)) fixed[i].push_back(displacement(w));
+  for (int sweep = 0; sweep < kSweeps; ++sweep)
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (next[i].empty()) continue;
+      Vec3 sum = Vec3::Zero();
+      for (const Vec3& f : fixed[i]) sum += f;
+      for (int w : next[i])
+        if (local.count(w)) sum += d[w - ids.front()];
+      d[ids[i] - ids.front()] = sum / static_cast<double>(next[i].size());
+    }
+  for (int id : ids) nodes_[id] = straight_position(id) + d[id - ids.front()];
 }
 
 void TetEditor::commit() {

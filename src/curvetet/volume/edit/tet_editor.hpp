@@ -75,6 +75,11 @@ class TetEditor {
   // Moves vertex v (made by add_vertex in the open transaction) by d, and
   // with it every node of its tets by its weight on v, so they stay straight.
   void move_new_vertex(int v, const Vec3& d);
+  // Places the nodes the open transaction created on new edges, faces and
+  // interiors (they start straight) by the discrete harmonic extension of
+  // the displacement from straight of the nodes they meet, so a curved face
+  // bends a new tet over its whole height, not only in its first node layer.
+  void relax_new_nodes();
   const std::vector<int>& added() const { return added_; }
   const std::vector<int>& killed() const { return killed_; }
   void commit();
@@ -99,6 +104,7 @@ class TetEditor {
     }
   };
   Key node_key(const Corners& c, int local) const;
+  Vec3 straight_position(int node) const; // on the straight simplex of its key's corners
   void link(int t);   // adjacency and node references of slot t
   void unlink(int t);
   void ref(int node);
@@ -114,6 +120,7 @@ class TetEditor {
   mesh::TetMesh source_; // boundary, lines, groups (tets and nodes are ours)
   int order_ = 1, np_ = 4, live_ = 0;
   std::vector<std::array<int, 4>> weights_; // per local node: weights on the 4 corners
+  std::vector<std::pair<int, int>> lattice_pairs_; // local nodes that are lattice neighbours
   std::vector<Vec3> nodes_;
   std::vector<Key> key_of_;
   std::vector<int> refs_;

@@ -1,0 +1,212 @@
+#include "curvetet/volume/assemble_middle.hpp"
+
+#include "curvetet/highorder/conforming_nodes.hpp"
+#include "curvetet/highorder/element_map.hpp"
+#include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/shell/prism_tets.hpp"
+#include "curvetet/shell/slab_tet_nodes.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <stdexcept>
+
+namespace curvetet::volume {
+namespace {
+
+using FaceKey = std::array<int, 3>;
+
+FaceKey sorted(FaceKey k) {
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+bool is_retracted(const CurvedMiddle& s, const std::vector<char>& retracted, int v) {
+  return retracted[v] && !s.singular[v];
+}
+
+// Pairs of local nodes of an order-P tet that are neighbours on its
+// lattice (integer barycentric coordinates differing by e_a - e_b).
+std::vector<std::pair<int, int>> lattice_edges(int order) {
+  const int np = highorder::tet_node_count(order);
+  std::vector<std::array<int, 4>> q(np);
+  for (int i = 0; i < np; ++i) {
+    const auto c = highorder::tet_node(order, i);
+    q[i] = {order - c[0] - c[1] - c[2], c[0], c[1], c[2]};
+  }
+  std::vector<std::pair<int, int>> out;
+  for (int i = 0; i < np; ++i)
+    for (int j = i + 1; j < np; ++j) {
+      int l1 = 0;
+      for (int k = 0; k < 4; ++k) l1 += std::abs(q[i][k] - q[j][k]);
+      if (l1 == 2) out.emplace_back(i, j);
+    }
+  return out;
+}
+
+// Moves every node that is not fixed by the discrete harmonic extension of
+// the fixed nodes' displacement from `straight` (every lattice edge of every
+// tet a unit spring).
+void spread_displacement(mesh::TetMesh& m, const std::vector<mesh::Vec3>& straight, const std::vector<char>& fixed) {
+  const int nn = static_cast<int>(m.nodes.size());
+  std::vector<int> free_id(nn, -1);
+  int nf = 0;
+  for (int i = 0; i < nn; ++i)
+    if (!fixed[i]) free_id[i] = nf++;
+  if (nf == 0) return;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 3);
+  const std::size_t np = highorder::tet_node_count(m.order);
+  for (std::size_t t = 0; t < static_cast<std::size_t>(m.num_tets()); ++t)
+    for (const auto& [a, b] : lattice_edges(m.order)) {
+      const int ga = m.tets[t * np + a], gb = m.tets[t * np + b];
+      for (const auto& [x, y] : {std::pair{ga, gb}, std::pair{gb, ga}}) {
+        if (free_id[x] < 0) continue;
+        entries.emplace_back(free_id[x], free_id[x], 1.0);
+        if (free_id[y] >= 0) entries.emplace_back(free_id[x], free_id[y], -1.0);
+        else rhs.row(free_id[x]) += (m.nodes[y] - straight[y]).transpose();
+      }
+    }
+  Eigen::SparseMatrix<double> laplacian(nf, nf);
+  laplacian.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
+  const Eigen::MatrixXd d = solver.solve(rhs);
+  for (int i = 0; i < nn; ++i)
+    if (free_id[i] >= 0) m.nodes[i] = straight[i] + d.row(free_id[i]).transpose();
+}
+
+} // namespace
+
+mesh::SurfaceMesh retracted_surface(const CurvedMiddle& s, const std::vector<char>& retracted) {
+  mesh::SurfaceMesh m;
+  m.vertices = s.bottom;
+  m.faces = s.faces;
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (!is_retracted(s, retracted, s.faces[f][k])) m.vertices[s.faces[f][k]] = s.middle_nodes[f][k];
+  return m;
+}
+
+mesh::TetMesh assemble_retracted(const CurvedMiddle& s, const std::vector<char>& retracted,
+                                 const mesh::LinearTetMesh& fill, int order, AssemblyStats* stats_out) {
+  const int n = static_cast<int>(s.bottom.size());
+  if (fill.num_vertices() < n) throw std::invalid_argument("assemble_retracted: fill lacks the surface's vertices");
+
+  // Corners: the fill's, then the middle end of every retracted pillar.
+  std::vector<mesh::Vec3> corners = fill.vertices;
+  std::vector<int> middle_id(n);
+  for (int v = 0; v < n; ++v) {
+    middle_id[v] = v;
+    if (is_retracted(s, retracted, v)) {
+      middle_id[v] = static_cast<int>(corners.size());
+      corners.push_back(mesh::Vec3::Zero());
+    }
+  }
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) corners[middle_id[s.faces[f][k]]] = s.middle_nodes[f][k];
+
+  // Tets: the fill's, then the slab tets whose pillar is retracted.
+  std::vector<std::array<int, 4>> tets = fill.tets;
+  std::vector<std::pair<int, shell::SlabTet>> slab_of; // per slab tet (after the fill's): face, canonical tet
+  AssemblyStats stats;
+  stats.fill_tets = fill.num_tets();
+  for (int f = 0; f < static_cast<int>(s.faces.size()); ++f) {
+    const auto& face = s.faces[f];
+    for (const auto& st : shell::canonical_split(face)) {
+      if (!is_retracted(s, retracted, face[st.pillar])) continue;
+      std::array<int, 4> ids;
+      for (int j = 0; j < 4; ++j) {
+        const int c = st.corners[j];
+        ids[j] = c >= 3 ? middle_id[face[c - 3]] : face[c];
+      }
+      tets.push_back(ids);
+      slab_of.emplace_back(f, st);
+      ++stats.slab_tets;
+    }
+  }
+
+  // Boundary triangle f: the one tet face whose corners are face f's middle
+  // ends (a fill face where no corner of f is retracted, else a slab tet's).
+  std::map<FaceKey, int> face_of;
+  for (int f = 0; f < static_cast<int>(s.faces.size()); ++f) {
+    const auto& g = s.faces[f];
+    face_of.emplace(sorted({middle_id[g[0]], middle_id[g[1]], middle_id[g[2]]}), f);
+  }
+  std::vector<std::pair<int, int>> on_face(s.faces.size(), {-1, -1});
+  for (int t = 0; t < static_cast<int>(tets.size()); ++t)
+    for (int lf = 0; lf < 4; ++lf) {
+      FaceKey k;
+      for (int j = 0; j < 3; ++j) k[j] = tets[t][highorder::kTetFaces[lf][j]];
+      const auto it = face_of.find(sorted(k));
+      if (it == face_of.end()) continue;
+      if (on_face[it->second].first >= 0) throw std::invalid_argument("assemble_retracted: a face has two tets");
+      on_face[it->second] = {t, lf};
+    }
+  for (const auto& [t, lf] : on_face)
+    if (t < 0) throw std::invalid_argument("assemble_retracted: a middle face bounds no tet");
+
+  const auto numbering = highorder::number_tet_nodes(static_cast<int>(corners.size()), tets, order);
+  const std::size_t per_tet = highorder::tet_node_count(order);
+  mesh::TetMesh out;
+  out.order = order;
+  out.nodes.assign(numbering.num_nodes, mesh::Vec3::Zero());
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    for (std::size_t i = 0; i < per_tet; ++i) {
+      const auto lambda = highorder::tet_node_barycentric(order, static_cast<int>(i));
+      mesh::Vec3 x = mesh::Vec3::Zero();
+      for (int j = 0; j < 4; ++j) x += lambda[j] * corners[tets[t][j]];
+      out.nodes[numbering.tet_nodes[t * per_tet + i]] = x;
+    }
+  for (std::size_t v = 0; v < corners.size(); ++v) out.nodes[v] = corners[v]; // bit for bit
+  const std::vector<mesh::Vec3> straight = out.nodes;
+
+  // Slab tets: the nodes the shell certifies (shell/slab_tet_nodes, a
+  // corner that is not retracted taken as a pinched pillar).
+  std::vector<char> fixed(out.nodes.size(), 0);
+  for (std::size_t k = 0; k < slab_of.size(); ++k) {
+    const auto& [f, st] = slab_of[k];
+    shell::SlabPatch patch;
+    patch.degree = s.degree;
+    patch.middle_nodes = s.middle_nodes[f].data();
+    patch.straight_parts = s.straight_slab_parts;
+    for (int c = 0; c < 3; ++c) {
+      patch.cap[c] = s.bottom[s.faces[f][c]];
+      patch.pinched[c] = !is_retracted(s, retracted, s.faces[f][c]);
+    }
+    const auto nodes = shell::slab_tet_nodes(patch, st, order);
+    const std::size_t t = fill.tets.size() + k;
+    for (std::size_t i = 0; i < per_tet; ++i) {
+      const int g = numbering.tet_nodes[t * per_tet + i];
+      if (g >= static_cast<int>(corners.size())) out.nodes[g] = nodes[i];
+      fixed[g] = 1;
+    }
+  }
+
+  // Boundary nodes (edges included, corners kept) on their face's patch.
+  for (int f = 0; f < static_cast<int>(s.faces.size()); ++f) {
+    const auto [t, lf] = on_face[f];
+    for (int i : highorder::tet_face_nodes(order, lf)) {
+      const int g = numbering.tet_nodes[t * per_tet + i];
+      out.boundary.push_back(g);
+      fixed[g] = 1;
+      const auto lambda = highorder::tet_node_barycentric(order, i);
+      std::array<double, 3> w{};
+      for (int j = 0; j < 4; ++j)
+        for (int k = 0; k < 3; ++k)
+          if (tets[t][j] == middle_id[s.faces[f][k]]) w[k] = lambda[j];
+      if (std::max({w[0], w[1], w[2]}) == 1.0) continue;
+      out.nodes[g] = highorder::triangle_point(s.degree, s.middle_nodes[f].data(), Eigen::Vector2d(w[1], w[2]));
+    }
+  }
+  out.tets = numbering.tet_nodes;
+  spread_displacement(out, straight, fixed);
+  mesh::set_default_groups(out);
+  stats.boundary_triangles = static_cast<int>(s.faces.size());
+  if (stats_out) *stats_out = stats;
+  return out;
+}
+
+} // namespace curvetet::volume
