@@ -32,6 +32,7 @@ edit::Corners with_vertex(edit::Corners c, int v) {
 }
 
 constexpr int kPlacementLevels = 5;
+constexpr std::size_t kCollapseTargets = 6;
 using Vec3 = Eigen::Vector3d;
 
 class Remesher {
@@ -149,13 +150,18 @@ class Remesher {
     return false;
   }
 
-  // Collapses of free vertex v onto each of its neighbours.
+  // Collapses of free vertex v onto its kCollapseTargets nearest neighbours
+  // (a far target rarely gives the best star, and every preview costs).
   void collapses_of(int v, std::vector<Candidate>& out) {
     if (e_.frozen(v)) return;
-    for (int w : e_.neighbours(v)) {
+    std::vector<std::pair<double, int>> near;
+    for (int w : e_.neighbours(v)) near.emplace_back((e_.position(w) - e_.position(v)).squaredNorm(), w);
+    const auto keep = std::min<std::size_t>(near.size(), kCollapseTargets);
+    std::partial_sort(near.begin(), near.begin() + keep, near.end());
+    for (std::size_t k = 0; k < keep; ++k) {
       Proposal p;
       Reject why;
-      if (edit::collapse(e_, v, w, p, &why)) out.push_back({std::move(p), true});
+      if (edit::collapse(e_, v, near[k].second, p, &why)) out.push_back({std::move(p), true});
       else ++s_.rejected[static_cast<int>(why)];
     }
   }
