@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <numeric>
 
 using namespace curvetet::highorder;
@@ -73,4 +74,25 @@ TEST(NodeOrdering, TetFacesHaveTheirNodes) {
         EXPECT_EQ(lambda[f], 0);
       }
     }
+}
+
+TEST(NodeOrdering, TetLatticeEdgesJoinNeighbouringLatticePoints) {
+  for (int order = 1; order <= 6; ++order) {
+    const auto& edges = tet_lattice_edges(order);
+    // The order-P lattice has P(P+1)(P+2) such edges (6 per unit step of
+    // each of the 6 edge directions times the lattice's P(P+1)(P+2)/6 cells).
+    EXPECT_EQ(static_cast<int>(edges.size()), order * (order + 1) * (order + 2)) << "order " << order;
+    for (const auto& [i, j] : edges) {
+      ASSERT_LT(i, j);
+      const auto a = tet_node(order, i), b = tet_node(order, j);
+      const int d[4] = {b[0] - a[0], b[1] - a[1], b[2] - a[2], -(b[0] - a[0]) - (b[1] - a[1]) - (b[2] - a[2])};
+      int plus = 0, minus = 0;
+      for (int x : d) {
+        ASSERT_LE(std::abs(x), 1);
+        plus += x == 1;
+        minus += x == -1;
+      }
+      EXPECT_TRUE(plus == 1 && minus == 1);
+    }
+  }
 }

@@ -1,5 +1,6 @@
 #include "curvetet/highorder/node_ordering.hpp"
 
+#include <cstdlib>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -206,6 +207,27 @@ const std::vector<int>& tet_face_nodes(int order, int face) {
     }
   });
   return cache[order][face];
+}
+
+const std::vector<std::pair<int, int>>& tet_lattice_edges(int order) {
+  check_order(order);
+  static std::vector<std::pair<int, int>> cache[kMaxOrder + 1];
+  static std::once_flag once[kMaxOrder + 1];
+  std::call_once(once[order], [order] {
+    const int n = tet_node_count(order);
+    std::vector<std::array<int, 4>> q(n);
+    for (int i = 0; i < n; ++i) {
+      const auto c = tet_node(order, i);
+      q[i] = {order - c[0] - c[1] - c[2], c[0], c[1], c[2]};
+    }
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j) {
+        int l1 = 0;
+        for (int k = 0; k < 4; ++k) l1 += std::abs(q[i][k] - q[j][k]);
+        if (l1 == 2) cache[order].emplace_back(i, j);
+      }
+  });
+  return cache[order];
 }
 
 } // namespace curvetet::highorder

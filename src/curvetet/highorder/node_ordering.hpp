@@ -15,6 +15,7 @@
 // interior recursively (VTK's vtkHigherOrderTetra). vtk_*_permutation(P)[k] is
 // the internal node written as the k-th VTK point.
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace curvetet::highorder {
@@ -53,5 +54,10 @@ const std::vector<int>& vtk_tet_permutation(int order);
 // its corners are ordered so the triangle's normal points out of the tet.
 inline constexpr int kTetFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 const std::vector<int>& tet_face_nodes(int order, int face);
+
+// Pairs (i, j), i < j, of internal nodes of an order-P tet that are
+// neighbours on its lattice (integer barycentric coordinates differing by
+// e_a - e_b): the edges of the P^3 small tets and octahedra of the lattice.
+const std::vector<std::pair<int, int>>& tet_lattice_edges(int order);
 
 } // namespace curvetet::highorder

@@ -10,7 +10,6 @@
 #include <Eigen/SparseCore>
 
 #include <algorithm>
-#include <cstdlib>
 #include <map>
 #include <stdexcept>
 
@@ -28,25 +27,6 @@ bool is_retracted(const CurvedMiddle& s, const std::vector<char>& retracted, int
   return retracted[v] && !s.singular[v];
 }
 
-// Pairs of local nodes of an order-P tet that are neighbours on its
-// lattice (integer barycentric coordinates differing by e_a - e_b).
-std::vector<std::pair<int, int>> lattice_edges(int order) {
-  const int np = highorder::tet_node_count(order);
-  std::vector<std::array<int, 4>> q(np);
-  for (int i = 0; i < np; ++i) {
-    const auto c = highorder::tet_node(order, i);
-    q[i] = {order - c[0] - c[1] - c[2], c[0], c[1], c[2]};
-  }
-  std::vector<std::pair<int, int>> out;
-  for (int i = 0; i < np; ++i)
-    for (int j = i + 1; j < np; ++j) {
-      int l1 = 0;
-      for (int k = 0; k < 4; ++k) l1 += std::abs(q[i][k] - q[j][k]);
-      if (l1 == 2) out.emplace_back(i, j);
-    }
-  return out;
-}
-
 // Moves every node that is not fixed by the discrete harmonic extension of
 // the fixed nodes' displacement from `straight` (every lattice edge of every
 // tet a unit spring).
@@ -61,7 +41,7 @@ void spread_displacement(mesh::TetMesh& m, const std::vector<mesh::Vec3>& straig
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 3);
   const std::size_t np = highorder::tet_node_count(m.order);
   for (std::size_t t = 0; t < static_cast<std::size_t>(m.num_tets()); ++t)
-    for (const auto& [a, b] : lattice_edges(m.order)) {
+    for (const auto& [a, b] : highorder::tet_lattice_edges(m.order)) {
       const int ga = m.tets[t * np + a], gb = m.tets[t * np + b];
       for (const auto& [x, y] : {std::pair{ga, gb}, std::pair{gb, ga}}) {
         if (free_id[x] < 0) continue;

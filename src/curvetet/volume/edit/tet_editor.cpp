@@ -3,7 +3,6 @@
 #include "curvetet/highorder/node_ordering.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <map>
 #include <stdexcept>
 
@@ -29,12 +28,6 @@ TetEditor::TetEditor(const mesh::TetMesh& m) : order_(m.order), np_(m.tet_nodes(
     const auto n = highorder::tet_node(order_, i);
     weights_.push_back({order_ - n[0] - n[1] - n[2], n[0], n[1], n[2]});
   }
-  for (int i = 0; i < np_; ++i)
-    for (int j = i + 1; j < np_; ++j) {
-      int l1 = 0;
-      for (int k = 0; k < 4; ++k) l1 += std::abs(weights_[i][k] - weights_[j][k]);
-      if (l1 == 2) lattice_pairs_.emplace_back(i, j);
-    }
   nodes_ = m.nodes;
   key_of_.assign(nodes_.size(), Key{});
   key_of_.front().fill(-1);
@@ -292,7 +285,7 @@ void TetEditor::relax_new_nodes() {
   std::vector<std::vector<int>> next(ids.size());
   for (int t : added_) {
     const int* n = nodes(t);
-    for (const auto& [a, b] : lattice_pairs_) {
+    for (const auto& [a, b] : highorder::tet_lattice_edges(order_)) {
       const auto ia = local.find(n[a]), ib = local.find(n[b]);
       if (ia != local.end()) next[ia->second].push_back(n[b]);
       if (ib != local.end()) next[ib->second].push_back(n[a]);

@@ -120,7 +120,6 @@ class TetEditor {
   mesh::TetMesh source_; // boundary, lines, groups (tets and nodes are ours)
   int order_ = 1, np_ = 4, live_ = 0;
   std::vector<std::array<int, 4>> weights_; // per local node: weights on the 4 corners
-  std::vector<std::pair<int, int>> lattice_pairs_; // local nodes that are lattice neighbours
   std::vector<Vec3> nodes_;
   std::vector<Key> key_of_;
   std::vector<int> refs_;
