@@ -22,7 +22,8 @@
 #include "curvetet/shell/feature_tracking.hpp"
 #include "curvetet/volume/assemble.hpp"
 #include "curvetet/volume/assemble_middle.hpp"
-#include "curvetet/volume/tetrahedralize.hpp"
+#include "curvetet/volume/direct_fill.hpp"
+#include "curvetet/volume/verify.hpp"
 #include "curvetet/volume/fill.hpp"
 
 namespace curvetet::pipeline {
@@ -130,10 +131,17 @@ bool assemble_on_middle(const volume::CurvedMiddle& middle, int order, mesh::Tet
   volume::AssemblyStats stats;
   for (int round = 0;; ++round) {
     const auto surface = volume::retracted_surface(middle, retracted);
-    volume::TetrahedralizeOptions to;
-    to.fill.interior_spacing = kInteriorSpacing * mesh::mean_edge_length(surface);
-    const auto filled = volume::tetrahedralize(surface, to);
-    out = volume::assemble_retracted(middle, retracted, filled.mesh, order, &stats);
+    volume::FillOptions fo;
+    fo.interior_spacing = kInteriorSpacing * mesh::mean_edge_length(surface);
+    // Only the Delaunay fill: where it does not apply (scans whose coarse
+    // triangles are not Delaunay faces), the layered fill of each round would
+    // cost what the slab assembly's one does and leave its thin layer anyway.
+    const auto filled = volume::fill_direct(surface, volume::OffsetSide::inward, fo);
+    if (!filled || !volume::verify_tet_mesh(*filled, surface.faces).ok()) {
+      report = {{"on", "middle"}, {"rounds", round + 1}, {"delaunay_fill", false}};
+      return false;
+    }
+    out = volume::assemble_retracted(middle, retracted, *filled, order, &stats);
     int added = 0;
     const int bad = retract_uncertified(out, n, retracted, &added);
     logger().debug("assembly on the middle surface, round {}: {} tets not certified", round, bad);
@@ -261,15 +269,23 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
 
   // The interior on the middle surface; the paper's assembly (fill inside
   // the bottom surface, every bottom slab) with --fill all or --slab-layer,
-  // or should some tet of the former not certify.
+  // or should the former have no Delaunay fill or some tet not certify
+  // (report "assembly_on_middle" then says which).
   bool assembled = false;
   if (o.fill == FillRegion::interior && !o.slab_layer) {
     StageTimer t(&report, "assemble");
-    assembled = assemble_on_middle(middle, o.order, r.mesh, report["assembly"]);
-    if (assembled && featured) report["features"]["lines"] = add_feature_lines(r.mesh, r.shell);
-    if (!assembled)
-      logger().warn("{} tets of the assembly on the middle surface are not certified; taking the slab assembly",
-                    report["assembly"]["uncertified_tets"].get<int>());
+    nlohmann::json attempt;
+    assembled = assemble_on_middle(middle, o.order, r.mesh, attempt);
+    if (assembled) {
+      report["assembly"] = attempt;
+      if (featured) report["features"]["lines"] = add_feature_lines(r.mesh, r.shell);
+    } else {
+      logger().info("the assembly on the middle surface {}; taking the slab assembly",
+                    attempt.contains("uncertified_tets")
+                        ? fmt::format("leaves {} tets uncertified", attempt["uncertified_tets"].get<int>())
+                        : "has no Delaunay fill");
+      report["assembly_on_middle"] = attempt;
+    }
   }
   if (!assembled && !assemble_with_slabs(r, middle, o, featured, report, uncertified)) return r;
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <unordered_map>
 
 namespace curvetet::volume {
 namespace {
@@ -60,8 +61,30 @@ class Remesher {
       ++s_.rejected[static_cast<int>(*why)];
       return false;
     }
+    for (int t : e_.added())
+      for (int v : e_.corners(t)) {
+        if (v >= static_cast<int>(changed_at_.size())) changed_at_.resize(v + 1, 0);
+        changed_at_[v] = ++commits_;
+      }
     e_.commit();
     return true;
+  }
+
+  // Whether a visit of tet t that failed before may now succeed: some
+  // operation changed the star of one of its corners or of their
+  // neighbours (the collapse targets) since.
+  bool may_succeed_again(int t) const {
+    const auto it = failed_at_.find(t);
+    if (it == failed_at_.end()) return true;
+    const auto changed_after = [&](int v) {
+      return v < static_cast<int>(changed_at_.size()) && changed_at_[v] > it->second;
+    };
+    for (int c : e_.corners(t)) {
+      if (changed_after(c)) return true;
+      for (int w : e_.neighbours(c))
+        if (changed_after(w)) return true;
+    }
+    return false;
   }
 
   // Max AMIPS the new tets of p would have, or +inf once one reaches bound.
@@ -178,7 +201,7 @@ class Remesher {
     if (static_cast<int>(bad.size()) > o_.max_quality_visits) bad.resize(o_.max_quality_visits);
     long done = 0;
     for (int t : bad) {
-      if (!e_.alive(t)) continue;
+      if (!e_.alive(t) || !may_succeed_again(t)) continue;
       std::vector<Candidate> candidates;
       const edit::Corners c = e_.corners(t);
       for (int i = 0; i < 4 && o_.collapse; ++i) collapses_of(c[i], candidates);
@@ -200,7 +223,10 @@ class Remesher {
       }
       // Splits (the dearest: their vertex is placed by a search, and they
       // add tets) only for very bad tets where nothing else helps.
-      if (e_.shape(t).max_amips <= o_.split_amips) continue;
+      if (e_.shape(t).max_amips <= o_.split_amips) {
+        failed_at_[t] = commits_;
+        continue;
+      }
       candidates.clear();
       for (int i = 0; i < 4 && o_.split; ++i)
         for (int j = i + 1; j < 4; ++j) {
@@ -208,7 +234,8 @@ class Remesher {
           Proposal p;
           if (edit::split(e_, c[i], c[j], p, &why)) candidates.push_back({std::move(p), false});
         }
-      done += run_best(candidates, 0);
+      if (run_best(candidates, 0)) ++done;
+      else failed_at_[t] = commits_;
     }
     return done;
   }
@@ -239,6 +266,9 @@ class Remesher {
   TetEditor& e_;
   const CurvedRemeshOptions& o_;
   CurvedRemeshStats& s_;
+  long commits_ = 0;
+  std::vector<long> changed_at_;              // per vertex: the commit that last changed its star
+  std::unordered_map<int, long> failed_at_;   // per tet: commits_ when its visit last failed
 };
 
 } // namespace
