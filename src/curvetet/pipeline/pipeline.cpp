@@ -15,6 +15,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <chrono>
+#include <optional>
 #include <functional>
 
 #include <memory>
@@ -131,13 +132,20 @@ bool assemble_on_middle(const volume::CurvedMiddle& middle, int order, mesh::Tet
   volume::AssemblyStats stats;
   for (int round = 0;; ++round) {
     const auto surface = volume::retracted_surface(middle, retracted);
-    volume::FillOptions fo;
-    fo.interior_spacing = kInteriorSpacing * mesh::mean_edge_length(surface);
-    // Only the Delaunay fill: where it does not apply (scans whose coarse
-    // triangles are not Delaunay faces), the layered fill of each round would
-    // cost what the slab assembly's one does and leave its thin layer anyway.
-    const auto filled = volume::fill_direct(surface, volume::OffsetSide::inward, fo);
-    if (!filled || !volume::verify_tet_mesh(*filled, surface.faces).ok()) {
+    // Only the Delaunay fill, with interior grid points, else without (a
+    // grid point may fall in the circumsphere of a large surface triangle):
+    // where neither applies, the layered fill of each round would cost what
+    // the slab assembly's one does (abc_00000001: 57 s) and leave its thin
+    // layer anyway.
+    std::optional<mesh::LinearTetMesh> filled;
+    for (const double spacing : {kInteriorSpacing * mesh::mean_edge_length(surface), 0.0}) {
+      volume::FillOptions fo;
+      fo.interior_spacing = spacing;
+      filled = volume::fill_direct(surface, volume::OffsetSide::inward, fo);
+      if (filled && volume::verify_tet_mesh(*filled, surface.faces).ok()) break;
+      filled.reset();
+    }
+    if (!filled) {
       report = {{"on", "middle"}, {"rounds", round + 1}, {"delaunay_fill", false}};
       return false;
     }
