@@ -11,11 +11,9 @@
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <chrono>
-#include <optional>
 #include <functional>
 
 #include <memory>
@@ -23,8 +21,6 @@
 #include "curvetet/shell/feature_tracking.hpp"
 #include "curvetet/volume/assemble.hpp"
 #include "curvetet/volume/assemble_middle.hpp"
-#include "curvetet/volume/direct_fill.hpp"
-#include "curvetet/volume/verify.hpp"
 #include "curvetet/volume/fill.hpp"
 
 namespace curvetet::pipeline {
@@ -45,9 +41,6 @@ constexpr double kMiddleQualityBound = 10;
 constexpr double kSlabQualityBound = 150;
 constexpr double kFillCoarsenEnergy = 100;
 constexpr double kFillEdgeFactor = 4;
-// The fill on the middle surface has interior points this many mean
-// boundary edges apart, so that the interior refines with the surface too.
-constexpr double kInteriorSpacing = 2;
 
 // The shell's middle surface as the assembly takes it: its fitted nodes, or
 // the flat triangles (degree 1) when it was not curved.
@@ -99,68 +92,6 @@ int uncertified_tets(const mesh::TetMesh& m) {
         return n;
       },
       std::plus<>());
-}
-
-// Marks for retraction the surface corners (ids < n) of the tets the
-// certificate does not prove positive; returns how many tets those are and
-// (in *added) how many corners it marked.
-int retract_uncertified(const mesh::TetMesh& m, int n, std::vector<char>& retracted, int* added) {
-  std::vector<char> bad(m.num_tets(), 0);
-  tbb::parallel_for(0, m.num_tets(), [&](int t) {
-    std::vector<mesh::Vec3> nodes(m.tet_nodes());
-    m.tet_positions(t, nodes.data());
-    bad[t] = highorder::certify_tet(m.order, nodes.data()).validity != highorder::Validity::positive;
-  });
-  *added = 0;
-  for (int t = 0; t < m.num_tets(); ++t)
-    for (int k = 0; k < 4 && bad[t]; ++k)
-      if (m.tet(t)[k] < n && !retracted[m.tet(t)[k]]) {
-        retracted[m.tet(t)[k]] = 1;
-        ++*added;
-      }
-  return static_cast<int>(std::count(bad.begin(), bad.end(), 1));
-}
-
-// The interior on the middle surface (volume/assemble_middle.hpp): filled
-// with nothing retracted, then, while some tet does not certify, again with
-// its corners retracted to the bottom surface. Returns false (the mesh is
-// then not to be used) when a round retracts nothing new and tets still
-// fail.
-bool assemble_on_middle(const volume::CurvedMiddle& middle, int order, mesh::TetMesh& out, nlohmann::json& report) {
-  const int n = static_cast<int>(middle.bottom.size());
-  std::vector<char> retracted(n, 0);
-  volume::AssemblyStats stats;
-  for (int round = 0;; ++round) {
-    const auto surface = volume::retracted_surface(middle, retracted);
-    // Only the Delaunay fill, with interior grid points, else without (a
-    // grid point may fall in the circumsphere of a large surface triangle):
-    // where neither applies, the layered fill of each round would cost what
-    // the slab assembly's one does (abc_00000001: 57 s) and leave its thin
-    // layer anyway.
-    std::optional<mesh::LinearTetMesh> filled;
-    for (const double spacing : {kInteriorSpacing * mesh::mean_edge_length(surface), 0.0}) {
-      volume::FillOptions fo;
-      fo.interior_spacing = spacing;
-      filled = volume::fill_direct(surface, volume::OffsetSide::inward, fo);
-      if (filled && volume::verify_tet_mesh(*filled, surface.faces).ok()) break;
-      filled.reset();
-    }
-    if (!filled) {
-      report = {{"on", "middle"}, {"rounds", round + 1}, {"delaunay_fill", false}};
-      return false;
-    }
-    out = volume::assemble_retracted(middle, retracted, *filled, order, &stats);
-    int added = 0;
-    const int bad = retract_uncertified(out, n, retracted, &added);
-    logger().debug("assembly on the middle surface, round {}: {} tets not certified", round, bad);
-    if (bad == 0 || added == 0) {
-      const auto count = std::count_if(retracted.begin(), retracted.end(), [](char c) { return c != 0; });
-      report = {{"on", "middle"},   {"rounds", round + 1},          {"retracted_vertices", count - (bad ? 0 : added)},
-                {"fill_tets", stats.fill_tets}, {"slab_tets", stats.slab_tets}, {"boundary_triangles", stats.boundary_triangles},
-                {"uncertified_tets", bad}};
-      return bad == 0;
-    }
-  }
 }
 
 // The paper's assembly: the fill inside the bottom surface (and with --fill
@@ -283,7 +214,7 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
   if (o.fill == FillRegion::interior && !o.slab_layer) {
     StageTimer t(&report, "assemble");
     nlohmann::json attempt;
-    assembled = assemble_on_middle(middle, o.order, r.mesh, attempt);
+    assembled = volume::assemble_on_middle(middle, o.order, r.mesh, attempt);
     if (assembled) {
       report["assembly"] = attempt;
       if (featured) report["features"]["lines"] = add_feature_lines(r.mesh, r.shell);

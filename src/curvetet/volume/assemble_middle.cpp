@@ -1,16 +1,22 @@
 #include "curvetet/volume/assemble_middle.hpp"
 
+#include "curvetet/core/log.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/element_map.hpp"
+#include "curvetet/highorder/jacobian_certificate.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/shell/prism_tets.hpp"
 #include "curvetet/shell/slab_tet_nodes.hpp"
+#include "curvetet/volume/direct_fill.hpp"
+#include "curvetet/volume/verify.hpp"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 namespace curvetet::volume {
@@ -56,6 +62,30 @@ void spread_displacement(mesh::TetMesh& m, const std::vector<mesh::Vec3>& straig
   const Eigen::MatrixXd d = solver.solve(rhs);
   for (int i = 0; i < nn; ++i)
     if (free_id[i] >= 0) m.nodes[i] = straight[i] + d.row(free_id[i]).transpose();
+}
+
+// The fill on the middle surface has interior points this many mean
+// boundary edges apart, so that the interior refines with the surface too.
+constexpr double kInteriorSpacing = 2;
+
+// Marks for retraction the surface corners (ids < n) of the tets the
+// certificate does not prove positive; returns how many tets those are and
+// (in *added) how many corners it marked.
+int retract_uncertified(const mesh::TetMesh& m, int n, std::vector<char>& retracted, int* added) {
+  std::vector<char> bad(m.num_tets(), 0);
+  tbb::parallel_for(0, m.num_tets(), [&](int t) {
+    std::vector<mesh::Vec3> nodes(m.tet_nodes());
+    m.tet_positions(t, nodes.data());
+    bad[t] = highorder::certify_tet(m.order, nodes.data()).validity != highorder::Validity::positive;
+  });
+  *added = 0;
+  for (int t = 0; t < m.num_tets(); ++t)
+    for (int k = 0; k < 4 && bad[t]; ++k)
+      if (m.tet(t)[k] < n && !retracted[m.tet(t)[k]]) {
+        retracted[m.tet(t)[k]] = 1;
+        ++*added;
+      }
+  return static_cast<int>(std::count(bad.begin(), bad.end(), 1));
 }
 
 } // namespace
@@ -187,6 +217,43 @@ mesh::TetMesh assemble_retracted(const CurvedMiddle& s, const std::vector<char>&
   stats.boundary_triangles = static_cast<int>(s.faces.size());
   if (stats_out) *stats_out = stats;
   return out;
+}
+
+bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& out, nlohmann::json& report) {
+  const int n = static_cast<int>(middle.bottom.size());
+  std::vector<char> retracted(n, 0);
+  AssemblyStats stats;
+  for (int round = 0;; ++round) {
+    const auto surface = retracted_surface(middle, retracted);
+    // Only the Delaunay fill, with interior grid points, else without (a
+    // grid point may fall in the circumsphere of a large surface triangle):
+    // where neither applies, the layered fill of each round would cost what
+    // the slab assembly's one does (abc_00000001: 57 s) and leave its thin
+    // layer anyway.
+    std::optional<mesh::LinearTetMesh> filled;
+    for (const double spacing : {kInteriorSpacing * mesh::mean_edge_length(surface), 0.0}) {
+      FillOptions fo;
+      fo.interior_spacing = spacing;
+      filled = fill_direct(surface, OffsetSide::inward, fo);
+      if (filled && verify_tet_mesh(*filled, surface.faces).ok()) break;
+      filled.reset();
+    }
+    if (!filled) {
+      report = {{"on", "middle"}, {"rounds", round + 1}, {"delaunay_fill", false}};
+      return false;
+    }
+    out = assemble_retracted(middle, retracted, *filled, order, &stats);
+    int added = 0;
+    const int bad = retract_uncertified(out, n, retracted, &added);
+    logger().debug("assembly on the middle surface, round {}: {} tets not certified", round, bad);
+    if (bad == 0 || added == 0) {
+      const auto count = std::count_if(retracted.begin(), retracted.end(), [](char c) { return c != 0; });
+      report = {{"on", "middle"},   {"rounds", round + 1},          {"retracted_vertices", count - (bad ? 0 : added)},
+                {"fill_tets", stats.fill_tets}, {"slab_tets", stats.slab_tets}, {"boundary_triangles", stats.boundary_triangles},
+                {"uncertified_tets", bad}};
+      return bad == 0;
+    }
+  }
 }
 
 } // namespace curvetet::volume

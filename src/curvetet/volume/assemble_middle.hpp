@@ -18,12 +18,14 @@
 // face bends the tets beside it over their whole height.
 //
 // Positivity is not guaranteed: a patch sagging into a tet deeper than the
-// tet is tall inverts it. The caller certifies every tet, retracts the
-// corners of the tets that fail, and assembles again (pipeline.cpp).
+// tet is tall inverts it: assemble_on_middle() certifies every tet,
+// retracts the corners of the tets that fail, and assembles again.
 #include "curvetet/mesh/linear_tet_mesh.hpp"
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/mesh/tet_mesh.hpp"
 #include "curvetet/volume/assemble.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <vector>
 
@@ -40,5 +42,14 @@ mesh::SurfaceMesh retracted_surface(const CurvedMiddle& shell, const std::vector
 // Singular vertices are never retracted (their pillar has no length).
 mesh::TetMesh assemble_retracted(const CurvedMiddle& shell, const std::vector<char>& retracted,
                                  const mesh::LinearTetMesh& fill, int order, AssemblyStats* stats = nullptr);
+
+// The interior on the middle surface: assembled with nothing retracted,
+// then, while some tet is not certified positive, again with the surface
+// corners of those tets retracted. Fills with fill_direct() only (with
+// interior grid points, else without). Returns false, and `out` is not to
+// be used, when the Delaunay fill does not apply or a round retracts nothing
+// new while tets still fail (the caller then takes assemble_curved_mesh()).
+// `report`: rounds, retracted vertices, tets, or why it failed.
+bool assemble_on_middle(const CurvedMiddle& shell, int order, mesh::TetMesh& out, nlohmann::json& report);
 
 } // namespace curvetet::volume
