@@ -608,5 +608,53 @@ TEST(TetEditor, SplitOfAHullEdgeIsRejected) {
   EXPECT_EQ(why, Reject::boundary_edge);
 }
 
+
+// relax_new_nodes: the nodes a flip creates stay straight where every kept
+// node is (a harmonic extension of zero), and where a kept node is bent they
+// follow it, by no more than it moved and in its direction (maximum
+// principle of the discrete harmonic extension).
+TEST(TetEditor, RelaxedNewNodesFollowTheBentNodesTheyMeet) {
+  const int order = 3;
+  for (const double bend : {0.0, 0.05}) {
+    mesh::TetMesh m = bipyramid(order);
+    const Vec3 on_face = (m.nodes[0] + m.nodes[1] + m.nodes[3]) / 3; // the node of hull face 0 1 3, kept
+    const Vec3 delta(0, -bend, 0);                         // outward, off the bipyramid
+    int bent = -1;
+    for (int i = 0; i < static_cast<int>(m.nodes.size()); ++i)
+      if ((m.nodes[i] - on_face).norm() < 1e-15) bent = i;
+    ASSERT_GE(bent, 0);
+    m.nodes[bent] += delta;
+    TetEditor e(m);
+    const int t = find_tet(e, {0, 1, 2, 3});
+    Proposal flip;
+    Reject why{};
+    ASSERT_TRUE(flip_face(e, t, local_index(e.corners(t), 3), flip, &why));
+    run(e, flip);
+    const int first_new = static_cast<int>(m.nodes.size());
+    e.relax_new_nodes();
+    double largest = 0;
+    for (int s : e.added())
+      for (int i = 4; i < e.nodes_per_tet(); ++i) {
+        const int id = e.nodes(s)[i];
+        if (id < first_new) continue;
+        const auto n = highorder::tet_node(order, i);
+        const int w[4] = {order - n[0] - n[1] - n[2], n[0], n[1], n[2]};
+        Vec3 straight = Vec3::Zero();
+        for (int k = 0; k < 4; ++k) straight += (double(w[k]) / order) * e.position(e.corners(s)[k]);
+        const Vec3 d = e.position(id) - straight;
+        if (bend == 0) {
+          EXPECT_LE(d.norm(), 1e-15);
+          continue;
+        }
+        EXPECT_LE(d.norm(), delta.norm() * (1 + 1e-12));
+        EXPECT_GE(d.dot(delta), -1e-15);
+        largest = std::max(largest, d.norm());
+      }
+    if (bend > 0) EXPECT_GT(largest, 0.01 * bend);
+    e.rollback();
+    EXPECT_EQ(e.to_mesh().nodes, TetEditor(m).to_mesh().nodes);
+  }
+}
+
 } // namespace
 } // namespace curvetet::volume::edit

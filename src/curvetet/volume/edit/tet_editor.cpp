@@ -281,35 +281,33 @@ void TetEditor::relax_new_nodes() {
       ids.push_back(e.id);
     }
   if (ids.empty()) return;
-  // Neighbours of each new node on the lattices of the added tets.
-  std::vector<std::vector<int>> next(ids.size());
+  // Per new node, on the lattices of the added tets: its new neighbours and
+  // the summed displacement (from straight) of the others, which stay put.
+  std::vector<std::vector<int>> free(ids.size());
+  std::vector<Vec3> fixed_sum(ids.size(), Vec3::Zero());
+  std::vector<int> degree(ids.size(), 0);
+  const auto link_to = [&](int i, int w) {
+    ++degree[i];
+    const auto it = local.find(w);
+    if (it != local.end()) free[i].push_back(it->second);
+    else fixed_sum[i] += nodes_[w] - straight_position(w);
+  };
   for (int t : added_) {
     const int* n = nodes(t);
     for (const auto& [a, b] : highorder::tet_lattice_edges(order_)) {
-      const auto ia = local.find(n[a]), ib = local.find(n[b]);
-      if (ia != local.end()) next[ia->second].push_back(n[b]);
-      if (ib != local.end()) next[ib->second].push_back(n[a]);
+      if (const auto ia = local.find(n[a]); ia != local.end()) link_to(ia->second, n[b]);
+      if (const auto ib = local.find(n[b]); ib != local.end()) link_to(ib->second, n[a]);
     }
   }
-  std::vector<Vec3> d(nodes_.size() - ids.front(), Vec3::Zero()); // displacement of new nodes, by id - first
-  auto displacement = [&](int id) -> Vec3 {
-    const auto it = local.find(id);
-    return it != local.end() ? d[id - ids.front()] : Vec3(nodes_[id] - straight_position(id));
-  };
-  std::vector<std::vector<Vec3>> fixed(ids.size()); // neighbours' displacement where fixed
-  for (std::size_t i = 0; i < ids.size(); ++i)
-    for (int w : next[i])
-      if (!local.count(w)) fixed[i].push_back(displacement(w));
+  std::vector<Vec3> d(ids.size(), Vec3::Zero());
   for (int sweep = 0; sweep < kSweeps; ++sweep)
     for (std::size_t i = 0; i < ids.size(); ++i) {
-      if (next[i].empty()) continue;
-      Vec3 sum = Vec3::Zero();
-      for (const Vec3& f : fixed[i]) sum += f;
-      for (int w : next[i])
-        if (local.count(w)) sum += d[w - ids.front()];
-      d[ids[i] - ids.front()] = sum / static_cast<double>(next[i].size());
+      if (degree[i] == 0) continue;
+      Vec3 sum = fixed_sum[i];
+      for (int j : free[i]) sum += d[j];
+      d[i] = sum / static_cast<double>(degree[i]);
     }
-  for (int id : ids) nodes_[id] = straight_position(id) + d[id - ids.front()];
+  for (std::size_t i = 0; i < ids.size(); ++i) nodes_[ids[i]] = straight_position(ids[i]) + d[i];
 }
 
 void TetEditor::commit() {
