@@ -248,7 +248,7 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
     logger().debug("assembly on the middle surface, round {}: {} tets not certified", round, bad);
     if (bad == 0 || added == 0) {
       const auto count = std::count_if(retracted.begin(), retracted.end(), [](char c) { return c != 0; });
-      report = {{"on", "middle"},   {"rounds", round + 1},          {"retracted_vertices", count - (bad ? 0 : added)},
+      report = {{"on", "middle"},   {"rounds", round + 1},          {"retracted_vertices", count},
                 {"fill_tets", stats.fill_tets}, {"slab_tets", stats.slab_tets}, {"boundary_triangles", stats.boundary_triangles},
                 {"uncertified_tets", bad}};
       return bad == 0;
