@@ -123,5 +123,12 @@ TEST(VerifyTetMesh, DistanceIsMeasuredOnTheCurvedSurfaceNotOnItsChords) {
   o.epsilon = 1e-9;
   const auto v = check::verify_tet_mesh(m, o);
   EXPECT_LT(v.input_to_boundary_max, 1e-12) << "chord distance " << chord_max;
-  EXPECT_TRUE(v.distance_ok());
+  EXPECT_TRUE(v.input_to_boundary_ok());
+  // The input is a small triangle inside each boundary triangle: the rest of
+  // the boundary is far from it, and ε both ways fails on that direction.
+  EXPECT_FALSE(v.boundary_to_input_ok());
+  EXPECT_FALSE(v.distance_ok());
+  EXPECT_FALSE(v.ok());
+  EXPECT_NE(v.text().find("FAIL (boundary->input exceeds epsilon)"), std::string::npos) << v.text();
+  EXPECT_EQ(v.json()["distance"]["boundary_to_input_ok"], false);
 }

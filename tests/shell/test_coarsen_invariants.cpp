@@ -145,6 +145,7 @@ TEST(CoarsenInvariants, CurvedFitExtensionPointIsConsulted) {
     int degree() const override { return 1; }
     bool fit_and_check(const ShellEditor&, StarCandidate&, double) const override { return false; }
     Vec3 evaluate(const StarCandidate&, int, double, double) const override { return Vec3::Zero(); }
+    std::vector<Vec3> patch_nodes(const StarCandidate&, int) const override { return {}; }
   };
   Shell s = flat_prism();
   const RejectingFit fit;

@@ -277,7 +277,11 @@ std::string TetMeshVerification::text() const {
         "  distance (relative to input bbox diagonal {:.6g}): input->boundary max {:.3g} mean {:.3g}, "
         "boundary->input max {:.3g} mean {:.3g}; epsilon {:.3g}{}\n",
         bbox_diagonal, input_to_boundary_max, input_to_boundary_mean, boundary_to_input_max, boundary_to_input_mean,
-        epsilon, distance_ok() ? "" : "  FAIL");
+        epsilon,
+        distance_ok()            ? ""
+        : !input_to_boundary_ok() && !boundary_to_input_ok() ? "  FAIL (both directions exceed epsilon)"
+        : !input_to_boundary_ok() ? "  FAIL (input->boundary exceeds epsilon)"
+                                  : "  FAIL (boundary->input exceeds epsilon)");
   return s;
 }
 
@@ -316,6 +320,8 @@ nlohmann::json TetMeshVerification::json() const {
       "input_to_boundary on the curved triangles themselves (check/curved_distance.hpp)";
   if (has_input)
     j["distance"] = {{"ok", distance_ok()},
+                     {"input_to_boundary_ok", input_to_boundary_ok()},
+                     {"boundary_to_input_ok", boundary_to_input_ok()},
                      {"epsilon_relative", epsilon},
                      {"bbox_diagonal", bbox_diagonal},
                      {"input_to_boundary_max", input_to_boundary_max},

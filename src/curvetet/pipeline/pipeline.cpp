@@ -183,6 +183,7 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
                          {"rounds", c.rounds},
                          {"middle_degree", r.shell.middle_nodes.empty() ? 1 : r.shell.middle_degree},
                          {"max_distance_relative", c.max_distance / diagonal},
+                         {"max_surface_distance_relative", c.max_surface_distance / diagonal},
                          {"epsilon_relative", epsilon_rel}};
     if (const auto* curved = dynamic_cast<const shell::CurvedMiddleFit*>(fit.get()))
       report["coarsen"]["curved_middle"] = curved->stats().json();

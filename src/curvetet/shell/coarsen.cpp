@@ -7,6 +7,7 @@
 #include "curvetet/shell/operations.hpp"
 #include "curvetet/shell/shell_editor.hpp"
 #include "curvetet/shell/star_invariants.hpp"
+#include "curvetet/shell/surface_distance.hpp"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -299,6 +300,9 @@ void debug_check(const Shell& s, double epsilon, const std::string& stage) {
   require_valid_shell(s, stage);
   if (const int f = first_uncertified_prism(s); f >= 0)
     throw Error(ExitCode::internal, fmt::format("curved middle of prism {} not certified after {}", f, stage));
+  if (const double d = middle_distance_bound(s, epsilon); !(d <= epsilon))
+    throw Error(ExitCode::internal,
+                fmt::format("middle surface farther than epsilon from the input after {}: bound {} (epsilon {})", stage, d, epsilon));
   const auto m = check_map(s);
   if (!(m.max_distance < epsilon) || m.points_outside > 0 || m.max_area_error > 1e-9 || m.min_piece_area < -1e-12) {
     throw Error(ExitCode::internal,
@@ -377,6 +381,7 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   out.faces_after = s.num_prisms();
   out.vertices_after = s.num_vertices();
   out.max_distance = check_map(s).max_distance;
+  out.max_surface_distance = middle_distance_bound(s, out.epsilon);
   out.seconds = since(start);
   return out;
 }

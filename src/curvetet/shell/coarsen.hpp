@@ -69,6 +69,7 @@ struct CoarsenStats {
   int vertices_before = 0, vertices_after = 0;
   double epsilon = 0;        // absolute
   double max_distance = 0;   // over all constraint points at the end
+  double max_surface_distance = 0; // bound over the middle surface at the end (surface_distance.hpp)
   int rounds = 0;
   double seconds = 0;
   std::vector<PassStats> passes;

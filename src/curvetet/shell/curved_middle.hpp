@@ -43,6 +43,7 @@ class CurvedMiddleFit final : public MiddleFit {
   int degree() const override { return degree_; }
   bool fit_and_check(const ShellEditor& editor, StarCandidate& c, double epsilon) const override;
   Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const override;
+  std::vector<Vec3> patch_nodes(const StarCandidate& c, int k) const override { return c.middle_nodes[k]; }
   CurvedFitStats stats() const;
 
  private:

@@ -27,6 +27,8 @@ class MiddleFit {
   virtual bool fit_and_check(const ShellEditor& editor, StarCandidate& c, double epsilon) const = 0;
   // The point of new prism k's middle surface at parameters (u, v).
   virtual Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const = 0;
+  // The Lagrange nodes (internal order, degree()) of new prism k's middle.
+  virtual std::vector<Vec3> patch_nodes(const StarCandidate& c, int k) const = 0;
 };
 
 class LinearMiddle final : public MiddleFit {
@@ -36,6 +38,10 @@ class LinearMiddle final : public MiddleFit {
   Vec3 evaluate(const StarCandidate& c, int k, double u, double v) const override {
     const auto& m = c.geoms[k].middle;
     return (1 - u - v) * m[0] + u * m[1] + v * m[2];
+  }
+  std::vector<Vec3> patch_nodes(const StarCandidate& c, int k) const override {
+    const auto& m = c.geoms[k].middle;
+    return {m[0], m[1], m[2]};
   }
 };
 

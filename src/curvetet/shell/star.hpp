@@ -39,6 +39,8 @@ enum class Rejection : std::uint8_t {
   caps_intersection, // invariant 3: new caps against all caps
   curved_fit,        // the middle-surface fit of the new triangles failed
   distance,          // a constraint point would map farther than epsilon
+  surface_distance,  // a point of a new middle patch may lie farther than
+                     // epsilon from the input (surface_distance.hpp)
   feature,           // breaks a feature rule (feature_invariant.hpp)
   batch_conflict,    // new caps cross caps committed earlier in the same batch,
                      // or an input face it reshapes was reshaped earlier in it
@@ -81,6 +83,7 @@ struct StarCandidate {
   };
   std::vector<Image> images;                // new Π of the points of removed prisms
   double max_distance = 0;                  // over `images`
+  double max_surface_distance = 0;          // bound over the new middle patches
   // Per new face: the fitted curved middle nodes (Shell::middle_nodes
   // layout); empty for a flat middle.
   std::vector<std::vector<Vec3>> middle_nodes;

@@ -2,6 +2,7 @@
 
 #include "curvetet/shell/feature_invariant.hpp"
 #include "curvetet/shell/straighten.hpp"
+#include "curvetet/shell/surface_distance.hpp"
 
 #include "curvetet/geometry/triangle_pair.hpp"
 
@@ -41,6 +42,7 @@ std::string_view to_string(Rejection r) {
     case Rejection::caps_intersection: return "caps_intersection";
     case Rejection::curved_fit: return "curved_fit";
     case Rejection::distance: return "distance";
+    case Rejection::surface_distance: return "surface_distance";
     case Rejection::feature: return "feature";
     case Rejection::batch_conflict: return "batch_conflict";
     case Rejection::count_: break;
@@ -343,6 +345,23 @@ class Distance final : public StarInvariant {
   }
 };
 
+// The other direction: every point of each new middle patch within epsilon
+// of the input faces its prism tracks (a derived bound, surface_distance.hpp).
+class SurfaceDistance final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::surface_distance; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    c.max_surface_distance = 0;
+    for (std::size_t k = 0; k < c.faces.size(); ++k) {
+      const auto nodes = ctx.fit.patch_nodes(c, static_cast<int>(k));
+      const auto d = patch_distance_bound(ctx.fit.degree(), nodes, ctx.editor.shell().input, c.tracked[k], ctx.epsilon);
+      if (!(d.bound() <= ctx.epsilon)) return false;
+      c.max_surface_distance = std::max(c.max_surface_distance, d.bound());
+    }
+    return true;
+  }
+};
+
 } // namespace
 
 InvariantList default_star_invariants() {
@@ -358,6 +377,7 @@ InvariantList default_star_invariants() {
   l.push_back(std::make_unique<MapImages>());
   l.push_back(std::make_unique<CurvedFit>());
   l.push_back(std::make_unique<Distance>());
+  l.push_back(std::make_unique<SurfaceDistance>());
   l.push_back(make_feature_invariant());
   return l;
 }

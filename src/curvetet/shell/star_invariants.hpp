@@ -31,6 +31,10 @@
 //                     the curved fit uses c.images as samples)
 //  Distance           ||p - middle(Π(β(p)))|| < epsilon for those points, the
 //                     middle evaluated through MiddleFit::evaluate
+//  SurfaceDistance    the other direction: a derived bound on the distance
+//                     from every point of each new middle patch to the input
+//                     faces its prism tracks is <= epsilon
+//                     (surface_distance.hpp)
 //  Features           feature chains and corners (feature_invariant.hpp)
 #include "curvetet/shell/middle_fit.hpp"
 #include "curvetet/shell/shell_editor.hpp"
