@@ -30,7 +30,7 @@ Command add_check_command(CLI::App& root) {
   cmd->add_option("MESH", o->mesh_path, "Curved tet mesh, Gmsh MSH 4.1 or 2.2")->required()->check(CLI::ExistingFile);
   cmd->add_option("--input", o->input_path, "Input surface the mesh approximates (.off/.obj/.stl/.ply)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--epsilon", o->epsilon, "Allowed input->boundary distance, relative to the input bbox diagonal")
+  cmd->add_option("--epsilon", o->epsilon, "Allowed distance between input and boundary, both ways (Hausdorff), relative to the input bbox diagonal")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--segments-per-edge", o->segments,

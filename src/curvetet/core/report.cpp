@@ -1,19 +1,17 @@
 #include "curvetet/core/report.hpp"
 
+#include "curvetet/core/atomic_file.hpp"
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
-
-#include <fstream>
 
 namespace curvetet {
 
 void Report::add_timing(const std::string& stage, double seconds) { data_["timings_s"][stage] = seconds; }
 
 void Report::write(const std::string& path) const {
-  std::ofstream out(path);
-  if (!out) throw Error(ExitCode::io, "cannot write report file '" + path + "'");
-  out << data_.dump(2) << '\n';
-  if (!out) throw Error(ExitCode::io, "failed while writing report file '" + path + "'");
+  AtomicFile file(path);
+  file.stream() << data_.dump(2) << '\n';
+  file.commit();
 }
 
 StageTimer::StageTimer(Report* report, std::string stage)

@@ -1,12 +1,11 @@
 #pragma once
-// Surface writers (OFF, OBJ, PLY ASCII/binary, STL ASCII/binary) and the
-// atomic-file helper every writer uses: output goes to "<path>.partial" and is
-// renamed into place only once complete, so a failed run leaves no partial
-// output file.
+// Surface writers (OFF, OBJ, PLY ASCII/binary, STL ASCII/binary), written
+// through AtomicFile (core/atomic_file.hpp).
 //
 // Text formats print doubles with 17 significant digits: reading them back
 // gives the same bits. STL stores 32-bit floats: exact only for coordinates
 // that are floats.
+#include "curvetet/core/atomic_file.hpp"
 #include "curvetet/io/read_surface.hpp"
 #include "curvetet/mesh/surface_mesh.hpp"
 
@@ -15,22 +14,7 @@
 
 namespace curvetet::io {
 
-class AtomicFile {
- public:
-  explicit AtomicFile(std::string path, bool binary = false);
-  ~AtomicFile(); // removes the partial file unless commit() ran
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-
-  std::ofstream& stream() { return out_; }
-  // Flushes, checks for errors and renames into place; throws Error(io).
-  void commit();
-
- private:
-  std::string path_, partial_;
-  std::ofstream out_;
-  bool committed_ = false;
-};
+using curvetet::AtomicFile;
 
 struct SurfaceWriteOptions {
   bool binary = false; // PLY and STL only
