@@ -79,6 +79,7 @@ std::function<int()> add_mesh_options(CLI::App& root) {
     int code = 0;
     if (!o->output.empty() || !o->vtu.empty() || !o->map_path.empty()) {
       if (o->epsilon_abs > 0) o->pipeline.epsilon_abs = o->epsilon_abs;
+      o->pipeline.constraint_points = in.features.points;
       auto result = pipeline::run_pipeline(in.mesh, o->pipeline, report, &in.feature_graph);
       const auto& v = result.verification;
       logger().info("result: {} tets of order {}, {} boundary triangles; {}", result.mesh.num_tets(), result.mesh.order,

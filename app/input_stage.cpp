@@ -67,10 +67,6 @@ CheckedInput read_checked_input(const InputOptions& o, Report& report) {
                           {"points", in.features.points.faces.size()}};
     logger().info("features: {} edges in {} chains and {} loops, {} corners", in.features.edges.size(),
                   in.feature_graph.chains.size() - loops, loops, in.feature_graph.corners.size());
-    if (!in.features.points.faces.empty())
-      logger().warn("features file: {} constraint points were validated but are not used: the distance bound is "
-                    "enforced at the input vertices (docs/features.md)",
-                    in.features.points.faces.size());
   }
   return in;
 }

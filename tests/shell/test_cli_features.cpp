@@ -96,3 +96,28 @@ print(n)
   ASSERT_EQ(g.exit_code, 0) << g.out;
   EXPECT_EQ(std::stoi(g.out), lines);
 }
+
+// Constraint points (issue 26): the features file's points join the input
+// vertices where input -> boundary is enforced, also on faces the feature
+// refinement splits (every corner face of the octahedron has two feature
+// edges).
+TEST(CliFeatures, ConstraintPointsAreMappedWithinEpsilon) {
+  const auto in = write_octahedron(2);
+  const auto features = (temp_dir() / "points.json").string();
+  nlohmann::json points;
+  for (int f = 0; f < 128; f += 3) {
+    points["faces"].push_back(f);
+    points["barycentric"].push_back({0.2, 0.3, 0.5});
+  }
+  std::ofstream(features) << nlohmann::json{{"points", points}}.dump();
+  const auto msh = (temp_dir() / "points.msh").string();
+  const auto report = (temp_dir() / "points.json.report").string();
+  const auto r = test::run_command(std::string(CURVETET_BINARY) + " -q " + in + " --feature-angle 30 --features " +
+                                   features + " --order 3 --debug-invariants -o " + msh + " --report " + report + " 2>&1");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto j = nlohmann::json::parse(std::ifstream(report));
+  EXPECT_EQ(j["shell"]["constraint_points"].get<int>(), 43);
+  // The shell's map check covers every tracked point, constraint points too.
+  EXPECT_LT(j["coarsen"]["max_distance_relative"].get<double>(), 0.01);
+  EXPECT_LE(j["coarsen"]["max_surface_distance_relative"].get<double>(), 0.01);
+}

@@ -112,19 +112,20 @@ TEST(CurvedMiddle, FitConvergesToACubicSurface) {
   EXPECT_LT(e24, e12 / 3); // O(h^2)
 }
 
-// A fit that returns a fixed cubic bubble of height c/27 (zero on the
-// edges), whatever the samples: stands for a least-squares fit that matches
-// the input at its vertices but bulges between them.
+// A fit that returns a fixed cubic bubble c u v (1 - u - v) along
+// `direction` (zero on the edges), whatever the samples: stands for a
+// least-squares fit that matches the input at its vertices but bulges (or
+// slides) between them.
 class BubbleFit final : public MiddleFit {
  public:
-  explicit BubbleFit(double c) : c_(c) {}
+  explicit BubbleFit(double c, Vec3 direction = Vec3(0, 0, 1)) : c_(c), direction_(direction) {}
   int degree() const override { return 3; }
   bool fit_and_check(const ShellEditor&, StarCandidate& c, double) const override {
     c.middle_nodes.assign(c.faces.size(), {});
     for (int i = 0; i < highorder::triangle_node_count(3); ++i) {
       const auto q = highorder::triangle_node(3, i);
       const double u = q[0] / 3.0, v = q[1] / 3.0;
-      c.middle_nodes[0].push_back(Vec3(u, v, bubble(u, v, c_)));
+      c.middle_nodes[0].push_back(Vec3(u, v, 0) + bubble(u, v, c_) * direction_);
     }
     return true;
   }
@@ -135,6 +136,7 @@ class BubbleFit final : public MiddleFit {
 
  private:
   double c_;
+  Vec3 direction_;
 };
 
 // ε both ways (issue 26): the input is the flat triangle sampled at the
@@ -152,6 +154,34 @@ TEST(CurvedMiddle, SurfaceDistanceRejectsAPatchBulgingBetweenInputVertices) {
   EXPECT_FALSE(run(s, within, fit, 0.05).has_value());
   EXPECT_GE(within.max_surface_distance, 0.3 / 27);
   EXPECT_LE(within.max_surface_distance, 0.05);
+}
+
+// Constraint points (issue 26): the patch slides in its own plane, by up to
+// 0.5/27 along (1, 1, 0) at the centroid, so it lies on the input (every
+// bound in the other direction holds) and the input vertices, all on the
+// edges, map exactly; but the input's centroid maps 0.026 away. A constraint
+// point there makes the Distance invariant see it.
+TEST(CurvedMiddle, ConstraintPointHoldsTheSurfaceWhereVerticesDoNot) {
+  const BubbleFit sliding(0.5, Vec3(1, 1, 0));
+  Shell s = bubble_prism(2, 0);
+  set_flat_middle(s, 3);
+  auto c = same_star(s);
+  EXPECT_FALSE(run(s, c, sliding, 0.02).has_value());
+  EXPECT_LT(c.max_distance, 1e-15);
+  // The middle quarter's centroid is the triangle's.
+  const Vec3 centroid(1.0 / 3, 1.0 / 3, 0);
+  mesh::Tri f{};
+  for (const auto& t : s.input.faces)
+    if (((s.input.vertices[t[0]] + s.input.vertices[t[1]] + s.input.vertices[t[2]]) / 3.0 - centroid).norm() < 1e-15) f = t;
+  add_constraint_points(s, {centroid}, {f});
+  ASSERT_EQ(s.points.size(), 7u);
+  EXPECT_NEAR(s.points[6].image.u, 1.0 / 3, 1e-12);
+  EXPECT_NEAR(s.points[6].image.v, 1.0 / 3, 1e-12);
+  auto held = same_star(s);
+  EXPECT_EQ(run(s, held, sliding, 0.02), Rejection::distance);
+  auto loose = same_star(s);
+  EXPECT_FALSE(run(s, loose, sliding, 0.03).has_value());
+  EXPECT_NEAR(loose.max_distance, std::sqrt(2.0) * 0.5 / 27, 1e-12);
 }
 
 TEST(CurvedMiddle, CertificateRejectsAnInvertedSlab) {

@@ -147,6 +147,20 @@ bool assemble_with_slabs(PipelineResult& r, volume::CurvedMiddle& middle, const 
 // One run of the stages. With a curved middle, returns early with
 // *uncertified > 0 when the assembled tets are not all certified positive
 // (the caller then runs again with a flat middle).
+// The features file's points, on `input` (whose vertex ids the shell's
+// input keeps when it refines faces for features).
+void add_constraint_points(shell::Shell& s, const mesh::SurfaceMesh& input, const features::ConstraintPoints& points) {
+  std::vector<mesh::Vec3> positions;
+  std::vector<shell::Tri> near;
+  for (std::size_t i = 0; i < points.faces.size(); ++i) {
+    const auto& f = input.faces[points.faces[i]];
+    const auto& b = points.barycentric[i];
+    positions.push_back(b[0] * input.vertices[f[0]] + b[1] * input.vertices[f[1]] + b[2] * input.vertices[f[2]]);
+    near.push_back(f);
+  }
+  shell::add_constraint_points(s, positions, near);
+}
+
 PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions& o, Report& report,
                           const features::FeatureGraph* features, int* uncertified) {
   const bool featured = features && (!features->chains.empty() || !features->corners.empty());
@@ -161,7 +175,9 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
     auto built = shell::build_shell(featured ? refine_for_features(input, *features) : input, o.shell);
     r.shell = std::move(built.shell);
     if (featured) shell::attach_features(r.shell, *features);
+    add_constraint_points(r.shell, input, o.constraint_points);
     report["shell"] = {{"faces", r.shell.num_prisms()},
+                       {"constraint_points", o.constraint_points.faces.size()},
                        {"singular_vertices", built.stats.singular_vertices},
                        {"min_thickness", built.stats.min_thickness}};
   }

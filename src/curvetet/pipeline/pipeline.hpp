@@ -18,6 +18,7 @@
 #include "curvetet/check/verify_tet_mesh.hpp"
 #include "curvetet/core/report.hpp"
 #include "curvetet/features/chains.hpp"
+#include "curvetet/features/feature_input.hpp"
 #include "curvetet/mesh/surface_mesh.hpp"
 #include "curvetet/mesh/tet_mesh.hpp"
 #include "curvetet/shell/build.hpp"
@@ -45,6 +46,9 @@ struct PipelineOptions {
   double box_margin = 0.1;             // --fill all: the box grows the top's bbox by this x diagonal per side
   bool optimize = true;                // curved optimization after the assembly
   volume::CurvedRemeshOptions optimization;
+  // Points of the input (face, barycentric; features file "points") where
+  // input -> boundary is enforced besides the input vertices.
+  features::ConstraintPoints constraint_points;
 };
 
 struct PipelineResult {

@@ -4,6 +4,9 @@
 #include "curvetet/mesh/edge_topology.hpp"
 #include "curvetet/shell/invariants.hpp"
 #include "curvetet/shell/layer_growth.hpp"
+#include "curvetet/shell/projection.hpp"
+
+#include "curvetet/core/error.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -55,7 +58,44 @@ void fill_stats(const Shell& s, const std::vector<double>& length, ShellBuildSta
   st.mean_thickness = count ? sum_t / count : 0;
 }
 
+// Barycentric coordinates of x projected on the plane of (a, b, c).
+std::array<double, 3> barycentric_of(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double area = n.squaredNorm();
+  if (!(area > 0)) return {-1, -1, -1};
+  const double lb = n.dot((x - a).cross(c - a)) / area, lc = n.dot((b - a).cross(x - a)) / area;
+  return {1 - lb - lc, lb, lc};
+}
+
 } // namespace
+
+void add_constraint_points(Shell& s, const std::vector<Vec3>& positions, const std::vector<Tri>& near) {
+  const auto vf = mesh::build_vertex_faces(s.input.num_vertices(), s.input.faces);
+  const Projector projector(s);
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    TrackedPoint p;
+    p.position = positions[i];
+    double best = -std::numeric_limits<double>::infinity();
+    for (int v : near[i])
+      for (int k = vf.offsets[v]; k < vf.offsets[v + 1]; ++k) {
+        const int t = vf.faces[k];
+        const auto tri = straight_triangle(s, t);
+        const auto l = barycentric_of(p.position, tri[0], tri[1], tri[2]);
+        const double depth = std::min({l[0], l[1], l[2]});
+        if (depth > best) {
+          best = depth;
+          p.input_face = t;
+          // Clamped into the face: the point lies on it up to rounding.
+          const std::array<double, 3> c{std::max(l[0], 0.0), std::max(l[1], 0.0), std::max(l[2], 0.0)};
+          const double sum = c[0] + c[1] + c[2];
+          p.barycentric = {c[0] / sum, c[1] / sum, c[2] / sum};
+        }
+      }
+    if (p.input_face < 0) throw Error(ExitCode::internal, "constraint point beside no input face");
+    s.points.push_back(p);
+    s.points.back().image = projector.project(straight_point(s, static_cast<int>(s.points.size()) - 1), p.input_face);
+  }
+}
 
 ShellBuild build_shell(const mesh::SurfaceMesh& input, const ShellOptions& options) {
   const auto start = clock_type::now();

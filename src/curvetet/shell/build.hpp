@@ -48,6 +48,16 @@ struct ShellBuild {
 
 ShellBuild build_shell(const mesh::SurfaceMesh& input, const ShellOptions& options = {});
 
+// Appends constraint points (the paper's set P beyond the input vertices:
+// points where input -> boundary is enforced by the Distance invariant) to
+// s.points. Point i lies at `positions[i]` on the input triangle whose
+// vertex ids are `near[i]` (ids of s.input's vertices; the triangle itself
+// may have been refined into faces around those vertices): it is placed on
+// the face of s.input beside those vertices that holds it best, and mapped
+// by Π. Call on a built shell, before coarsening. Throws Error(internal) if
+// no prism holds a point.
+void add_constraint_points(Shell& s, const std::vector<Vec3>& positions, const std::vector<Tri>& near);
+
 // Splits every edge between two singular vertices of `m` (step 2 above) and
 // returns, per face of the result, the face of `m` it lies in. Vertices of m
 // keep their ids; new ones are appended. Exposed for tests.

@@ -23,7 +23,7 @@ MapCheck check_map(const Shell& s) {
       return;
     }
     const PrismGeom g = prism_geom(s, p.image.prism);
-    const auto uv = project_in(g, straight_vertex(s, i), 1e-9);
+    const auto uv = project_in(g, straight_point(s, i), 1e-9);
     outside[i] = !uv || std::abs((*uv)[0] - p.image.u) > 1e-9 || std::abs((*uv)[1] - p.image.v) > 1e-9;
     const Vec3 x = middle_point(s, p.image);
     dist[i] = (x - p.position).norm();

@@ -65,7 +65,7 @@ int Projector::remap_points(Shell& s) const {
   for (std::size_t i = 0; i < s.points.size(); ++i) {
     auto& p = s.points[i];
     try {
-      p.image = project(straight_vertex(s, static_cast<int>(i)), p.input_face);
+      p.image = project(straight_point(s, static_cast<int>(i)), p.input_face);
     } catch (const Error&) {
       ++failed;
     }

@@ -37,12 +37,15 @@ struct MapPoint {
   double u = 0, v = 0;
 };
 
-// An input vertex followed through every shell edit: its position on M,
-// an input face holding it, and its image Π(β(position)).
+// A point of the input followed through every shell edit: its position on
+// M, an input face holding it, and its image Π(β(position)). Points
+// 0..n-1 are the input vertices; later ones are constraint points
+// (add_constraint_points), placed by `barycentric` on their input face.
 struct TrackedPoint {
   Vec3 position;
   int input_face = -1;
   MapPoint image;
+  std::array<double, 3> barycentric{}; // constraint points only
 };
 
 struct Shell {
@@ -52,7 +55,7 @@ struct Shell {
   std::vector<char> singular;            // per shell vertex: pinched pillar
   mesh::SurfaceMesh input;               // the input surface M
   std::vector<Vec3> straight;            // M̄'s vertices (empty: M̄ = M)
-  std::vector<TrackedPoint> points;      // points[i] is input vertex i
+  std::vector<TrackedPoint> points;      // input vertices, then constraint points
   // The curved middle surface (paper §4.1): per prism, the Lagrange nodes of
   // a degree-`middle_degree` triangle in internal (Gmsh) order, corners
   // first and bitwise equal to middle[faces[f][k]]; edge nodes agree between
@@ -77,6 +80,14 @@ inline const Vec3& straight_vertex(const Shell& s, int i) {
 inline std::array<Vec3, 3> straight_triangle(const Shell& s, int t) {
   const Tri& f = s.input.faces[t];
   return {straight_vertex(s, f[0]), straight_vertex(s, f[1]), straight_vertex(s, f[2])};
+}
+// Tracked point p on M̄: input vertex p, or a constraint point at its
+// barycentric coordinates on its (straightened) face.
+inline Vec3 straight_point(const Shell& s, int p) {
+  if (p < s.input.num_vertices()) return straight_vertex(s, p);
+  const auto t = straight_triangle(s, s.points[p].input_face);
+  const auto& b = s.points[p].barycentric;
+  return b[0] * t[0] + b[1] * t[1] + b[2] * t[2];
 }
 
 // The point of the (curved or flat) middle surface at p.

@@ -314,7 +314,7 @@ class MapImages final : public StarInvariant {
         for (std::size_t k = 0; k < c.faces.size(); ++k) {
           if (!std::binary_search(c.tracked[k].begin(), c.tracked[k].end(), pt.input_face)) continue;
           double depth;
-          const auto uv = project_in(c.geoms[k], straight_vertex(s, c, p), std::numeric_limits<double>::infinity(), &depth);
+          const auto uv = project_in(c.geoms[k], straight_point(s, c, p), std::numeric_limits<double>::infinity(), &depth);
           if (uv && depth > best_depth) {
             best_depth = depth;
             best_k = static_cast<int>(k);

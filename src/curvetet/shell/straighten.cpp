@@ -195,6 +195,13 @@ Vec3 straight_vertex(const Shell& s, const StarCandidate& c, int input_vertex) {
   return x ? x->at : shell::straight_vertex(s, input_vertex);
 }
 
+Vec3 straight_point(const Shell& s, const StarCandidate& c, int p) {
+  if (p < s.input.num_vertices()) return straight_vertex(s, c, p);
+  const auto t = straight_triangle(s, c, s.points[p].input_face);
+  const auto& b = s.points[p].barycentric;
+  return b[0] * t[0] + b[1] * t[1] + b[2] * t[2];
+}
+
 std::array<Vec3, 3> straight_triangle(const Shell& s, const StarCandidate& c, int input_face) {
   if (c.straightened.empty()) return shell::straight_triangle(s, input_face);
   const Tri& f = s.input.faces[input_face];

@@ -37,6 +37,8 @@ namespace curvetet::shell {
 
 // M̄ as candidate c leaves it.
 Vec3 straight_vertex(const Shell& s, const StarCandidate& c, int input_vertex);
+// Tracked point p (shell.hpp straight_point) with c's straightening applied.
+Vec3 straight_point(const Shell& s, const StarCandidate& c, int p);
 std::array<Vec3, 3> straight_triangle(const Shell& s, const StarCandidate& c, int input_face);
 
 // Fills c.straightened and c.reshaped and checks the rules above (also
