@@ -12,6 +12,17 @@ namespace curvetet::shell {
 
 namespace {
 
+// Forward error of the double triple product of three rounded differences,
+// relative to its permanent (the same expression with absolute values):
+// Shewchuk's orient3d bound A, (7 + 56u) u with u = 2^-53 ("Adaptive
+// Precision Floating-Point Arithmetic and Fast Robust Geometric
+// Predicates", 1997, §4.3), valid without underflow, hence the floor on the
+// permanent. tests/shell/test_exact_dot.cpp checks decisions against exact
+// arithmetic on near-coplanar data.
+constexpr double kUnit = 0x1p-53;
+constexpr double kTripleProductError = (7 + 56 * kUnit) * kUnit;
+constexpr double kNoUnderflow = 1e-250;
+
 int exact_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& p,
                const Eigen::Vector3d& q) {
   mpq_class e1[3], e2[3], h[3];
@@ -75,12 +86,11 @@ int normal_dot_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
   const double permanent = (std::abs(e1[1] * e2[2]) + std::abs(e1[2] * e2[1])) * std::abs(h[0]) +
                            (std::abs(e1[2] * e2[0]) + std::abs(e1[0] * e2[2])) * std::abs(h[1]) +
                            (std::abs(e1[0] * e2[1]) + std::abs(e1[1] * e2[0])) * std::abs(h[2]);
-  // The rounded differences and products err by a few units in the last
-  // place of `permanent`; 1e-14 (about 45 ulp) is a safe margin. Anything
-  // closer (and underflow-sized values) goes to exact arithmetic.
-  const double bound = 1e-14 * permanent;
-  if (det > bound && permanent > 1e-250) return 1;
-  if (det < -bound && permanent > 1e-250) return -1;
+  // Anything within the derived error (and underflow-sized values) goes to
+  // exact arithmetic.
+  const double bound = kTripleProductError * permanent;
+  if (det > bound && permanent > kNoUnderflow) return 1;
+  if (det < -bound && permanent > kNoUnderflow) return -1;
   return exact_sign(a, b, c, p, q);
 }
 
@@ -97,9 +107,9 @@ double orient3d_value(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const 
   const double permanent = (std::abs(e1[1] * e2[2]) + std::abs(e1[2] * e2[1])) * std::abs(e3[0]) +
                            (std::abs(e1[2] * e2[0]) + std::abs(e1[0] * e2[2])) * std::abs(e3[1]) +
                            (std::abs(e1[0] * e2[1]) + std::abs(e1[1] * e2[0])) * std::abs(e3[2]);
-  // The double value errs by at most ~1e-14 x permanent (as above); it is
-  // kept when that is below 1e-12 of its magnitude.
-  if (std::abs(det) >= 1e-2 * permanent && permanent > 1e-250) return det;
+  // The double value errs by at most kTripleProductError x permanent; it is
+  // kept when that is at most 1e-12 of its magnitude.
+  if (kTripleProductError * permanent <= 1e-12 * std::abs(det) && permanent > kNoUnderflow) return det;
   // Exactly coplanar points (flat regions: frequent) are told apart by the
   // fast filtered predicate before paying for rationals.
   if (geometry::orient3d(a, b, c, d) == 0) return 0;
