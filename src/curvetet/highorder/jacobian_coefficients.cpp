@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 
 namespace curvetet::highorder::detail {
 
@@ -71,6 +72,8 @@ ConvTable make_conv(Shape a, Shape b) {
       t.out_index[static_cast<std::size_t>(i) * b.size() + j] = o;
       t.max_pairs = std::max(t.max_pairs, ++count[o]);
     }
+  // conv_radius sums 8 operations per pair (jacobian_coefficients.hpp, kInflate).
+  if (8 * t.max_pairs + 8 > kMaxRadiusTerms) throw std::logic_error("jacobian coefficients: radius chain too long");
   return t;
 }
 

@@ -16,7 +16,15 @@
 namespace curvetet::highorder::detail {
 
 inline constexpr double kUnit = 0x1p-53;     // unit roundoff of double
-inline constexpr double kInflate = 1 + 1e-9; // covers rounding in radius arithmetic
+// Radii are sums and products of non-negative doubles, each output a chain
+// of at most kMaxRadiusTerms operations (the largest is a convolution's sum
+// over the pairs landing on one coefficient, checked where its table is
+// built). Rounded to nearest, such a chain computes at least (1 - γ) times
+// its exact value, γ = m u / (1 - m u) < 2^-32 for m ≤ 2^20 (Higham, §3.1);
+// one more multiplication by kInflate ≥ (1 + 2^-31) / (1 - 2^-32) restores
+// an upper bound, its own rounding included. Derived, not a margin.
+inline constexpr int kMaxRadiusTerms = 1 << 20;
+inline constexpr double kInflate = 1 + 1e-9;
 
 struct Shape {
   int sd = 3, n = 0, q = 0;
