@@ -23,8 +23,12 @@ MapCheck check_map(const Shell& s) {
       return;
     }
     const PrismGeom g = prism_geom(s, p.image.prism);
-    const auto uv = project_in(g, straight_point(s, i), 1e-9);
-    outside[i] = !uv || std::abs((*uv)[0] - p.image.u) > 1e-9 || std::abs((*uv)[1] - p.image.v) > 1e-9;
+    // Containment exact; the stored (u, v) must agree with a fresh double
+    // projection (a consistency check of the bookkeeping, not a decision).
+    const Vec3 bar = straight_point(s, i);
+    const auto uv = project_in(g, bar, std::numeric_limits<double>::infinity());
+    const bool snapped = i < static_cast<int>(s.features.on_edge.size()) && s.features.on_edge[i].a >= 0;
+    outside[i] = (!snapped && !prism_contains(g, bar)) || !uv || std::abs((*uv)[0] - p.image.u) > 1e-9 || std::abs((*uv)[1] - p.image.v) > 1e-9;
     const Vec3 x = middle_point(s, p.image);
     dist[i] = (x - p.position).norm();
   });

@@ -67,6 +67,19 @@ bool positive(const PrismGeom& g) {
   return true;
 }
 
+bool prism_contains(const PrismGeom& g, const Vec3& p) {
+  for (Slab slab : kSlabs)
+    for (const auto& tet : canonical_split(g.ids)) {
+      if (g.zero_pillar(slab, tet.pillar)) continue;
+      const auto& q = tet.corners;
+      const Vec3 v[4] = {g.corner(slab, q[0]), g.corner(slab, q[1]), g.corner(slab, q[2]), g.corner(slab, q[3])};
+      if (orient3d(p, v[1], v[2], v[3]) >= 0 && orient3d(v[0], p, v[2], v[3]) >= 0 && orient3d(v[0], v[1], p, v[3]) >= 0 &&
+          orient3d(v[0], v[1], v[2], p) >= 0)
+        return true;
+    }
+  return false;
+}
+
 bool triangle_meets_prism(const PrismGeom& g, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3* tri[3] = {&a, &b, &c};
   for (Slab slab : kSlabs)

@@ -35,6 +35,10 @@ PrismGeom prism_geom(const Shell& s, int prism);
 // skipped). Same rule as shell::prism_positive.
 bool positive(const PrismGeom& g);
 
+// Exact: p lies in the closed prism (the union of its canonical tets over
+// non-zero pillars; they are positive by invariant 1).
+bool prism_contains(const PrismGeom& g, const Vec3& p);
+
 // Exact: the closed triangle (a, b, c) meets the closed prism (union of the
 // canonical tets of both slabs).
 bool triangle_meets_prism(const PrismGeom& g, const Vec3& a, const Vec3& b, const Vec3& c);

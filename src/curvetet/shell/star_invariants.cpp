@@ -308,22 +308,32 @@ class MapImages final : public StarInvariant {
     for (int f : c.removed)
       for (int p : ctx.editor.points_in(f)) {
         const auto& pt = s.points[p];
-        int best_k = -1;
-        double best_depth = -std::numeric_limits<double>::infinity();
-        std::array<double, 2> best_uv{};
+        // The deepest new prism tracking its face (double), confirmed by
+        // the exact containment test; the next deepest if that fails.
+        struct Hit {
+          double depth;
+          int k;
+          std::array<double, 2> uv;
+        };
+        std::vector<Hit> hits;
+        const Vec3 x = straight_point(s, c, p);
         for (std::size_t k = 0; k < c.faces.size(); ++k) {
           if (!std::binary_search(c.tracked[k].begin(), c.tracked[k].end(), pt.input_face)) continue;
           double depth;
-          const auto uv = project_in(c.geoms[k], straight_point(s, c, p), std::numeric_limits<double>::infinity(), &depth);
-          if (uv && depth > best_depth) {
-            best_depth = depth;
-            best_k = static_cast<int>(k);
-            best_uv = *uv;
-          }
+          const auto uv = project_in(c.geoms[k], x, std::numeric_limits<double>::infinity(), &depth);
+          if (uv) hits.push_back({depth, static_cast<int>(k), *uv});
         }
-        // Numerically outside every new prism: treated as not covered.
-        if (best_k < 0 || best_depth < -1e-9) return false;
-        c.images.push_back({p, best_k, best_uv[0], best_uv[1]});
+        std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.depth > b.depth; });
+        if (hits.empty()) return false; // no new prism tracks its face: not covered
+        // Chain vertices straightened onto a coarse edge lie on it only up to
+        // rounding; their image is placed on the edge exactly (snap below).
+        if (on_straightened_edge(s, c, p)) {
+          c.images.push_back({p, hits.front().k, hits.front().uv[0], hits.front().uv[1]});
+          continue;
+        }
+        const auto inside = std::find_if(hits.begin(), hits.end(), [&](const Hit& h) { return prism_contains(c.geoms[h.k], x); });
+        if (inside == hits.end()) return false; // outside every new prism tracking its face: not covered
+        c.images.push_back({p, inside->k, inside->uv[0], inside->uv[1]});
       }
     return snap_straightened_images(s, c);
   }

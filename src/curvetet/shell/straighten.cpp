@@ -195,6 +195,12 @@ Vec3 straight_vertex(const Shell& s, const StarCandidate& c, int input_vertex) {
   return x ? x->at : shell::straight_vertex(s, input_vertex);
 }
 
+bool on_straightened_edge(const Shell& s, const StarCandidate& c, int p) {
+  if (const auto* x = find_straightened(c, p)) return x->a >= 0;
+  const auto& on_edge = s.features.on_edge;
+  return p < static_cast<int>(on_edge.size()) && on_edge[p].a >= 0;
+}
+
 Vec3 straight_point(const Shell& s, const StarCandidate& c, int p) {
   if (p < s.input.num_vertices()) return straight_vertex(s, c, p);
   const auto t = straight_triangle(s, c, s.points[p].input_face);

@@ -37,6 +37,10 @@ namespace curvetet::shell {
 
 // M̄ as candidate c leaves it.
 Vec3 straight_vertex(const Shell& s, const StarCandidate& c, int input_vertex);
+// Whether tracked point p lies on a coarse feature edge after c (straightened
+// by c, or earlier and not moved back by c): its image is snapped onto that
+// edge (snap_straightened_images), not found by containment.
+bool on_straightened_edge(const Shell& s, const StarCandidate& c, int p);
 // Tracked point p (shell.hpp straight_point) with c's straightening applied.
 Vec3 straight_point(const Shell& s, const StarCandidate& c, int p);
 std::array<Vec3, 3> straight_triangle(const Shell& s, const StarCandidate& c, int input_face);
