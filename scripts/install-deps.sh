@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs curvetet's Debian 12 packages. Idempotent and fast when they are
-# already there (no apt-get call at all). Usage: install-deps.sh [build|test|bench|docs]
+# already there (no apt-get call at all). Usage: install-deps.sh [build|test|bench|docs|fuzz]
 set -euo pipefail
 build_pkgs=(cmake ninja-build g++ libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libtbb-dev
             libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev)
 test_pkgs=(gmsh python3-gmsh python3-meshio python3-numpy python3-dolfinx)
 bench_pkgs=(tetgen time)
 docs_pkgs=(python3-numpy python3-matplotlib)  # scripts/pictures.sh
+fuzz_pkgs=(clang libclang-rt-14-dev)          # scripts/fuzz.sh, scripts/test-sanitize.sh
 
 pkgs=("${build_pkgs[@]}")
 case "${1:-build}" in
@@ -14,7 +15,8 @@ case "${1:-build}" in
   test) pkgs+=("${test_pkgs[@]}") ;;
   bench) pkgs+=("${test_pkgs[@]}" "${bench_pkgs[@]}") ;;
   docs) pkgs+=("${docs_pkgs[@]}") ;;
-  *) echo "usage: $0 [build|test|bench|docs]" >&2; exit 2 ;;
+  fuzz) pkgs+=("${fuzz_pkgs[@]}") ;;
+  *) echo "usage: $0 [build|test|bench|docs|fuzz]" >&2; exit 2 ;;
 esac
 
 missing=()

@@ -165,3 +165,21 @@ TEST(AtomicFile, NoPartialOutputOnFailure) {
   EXPECT_FALSE(fs::exists(path));
   EXPECT_FALSE(fs::exists(path + ".partial"));
 }
+
+// Findings of scripts/fuzz.sh (issue 27): counts from the file must not size
+// allocations beyond what the file holds, nor turn NaN into a size.
+TEST(SurfaceRead, CountsLargerThanTheFileAreRejectedNotAllocated) {
+  using io::SurfaceFormat;
+  EXPECT_THROW(io::parse_surface("OFF\n333333332 6333313331336738 34\n", SurfaceFormat::off, "x.off"), Error);
+  EXPECT_THROW(io::parse_surface("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n900000000000 0 1 2\n", SurfaceFormat::off, "x.off"),
+               Error);
+  const std::string ply_header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                 "property float z\nelement face ";
+  EXPECT_THROW(io::parse_surface(ply_header + "99999999999999\nproperty list uchar int vertex_indices\nend_header\n",
+                                 SurfaceFormat::ply, "x.ply"),
+               Error);
+  EXPECT_THROW(io::parse_surface(ply_header + "1\nproperty list float int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                                              "1e300 0 1 2\n",
+                                 SurfaceFormat::ply, "x.ply"),
+               Error);
+}

@@ -26,6 +26,7 @@ class MshCursor {
   [[noreturn]] void fail(const std::string& what) const {
     throw Error(ExitCode::io, fmt::format("{}: MSH parse error near byte {}: {}", name_, pos_, what));
   }
+  std::size_t size() const { return s_.size(); }
   bool at_end() {
     skip_space();
     return pos_ >= s_.size();
@@ -167,8 +168,9 @@ void read_nodes_v41(MshCursor& c, bool binary, Raw& raw) {
   const auto total = c.value<std::uint64_t>(binary);
   c.value<std::uint64_t>(binary);
   c.value<std::uint64_t>(binary);
-  raw.node_tags.reserve(total);
-  raw.coords.reserve(total);
+  // A count from the file sizes no allocation beyond what the file can hold.
+  raw.node_tags.reserve(std::min<std::uint64_t>(total, c.size()));
+  raw.coords.reserve(std::min<std::uint64_t>(total, c.size()));
   for (std::uint64_t b = 0; b < blocks; ++b) {
     const int dim = c.value<int>(binary);
     c.value<int>(binary);

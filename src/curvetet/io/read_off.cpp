@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
+
 namespace curvetet::io {
 namespace {
 
@@ -34,6 +36,10 @@ mesh::PolygonSoup parse_off(std::string_view bytes, const std::string& name) {
     fail(name, c.line_number(), "file does not start with 'OFF'");
   auto nv = c.integer(), nf = c.integer(), ne = c.integer();
   if (!nv || !nf || !ne || *nv < 0 || *nf < 0) fail(name, c.line_number(), "bad vertex/face/edge counts");
+  // Every entry takes at least a byte: larger counts cannot be right, and
+  // must not size an allocation.
+  if (static_cast<std::uint64_t>(*nv) > bytes.size() || static_cast<std::uint64_t>(*nf) > bytes.size())
+    fail(name, c.line_number(), "vertex/face counts larger than the file");
   c.line();
 
   mesh::PolygonSoup soup;
@@ -50,9 +56,11 @@ mesh::PolygonSoup parse_off(std::string_view bytes, const std::string& name) {
   soup.polygons.resize(static_cast<std::size_t>(*nf));
   for (auto& poly : soup.polygons) {
     std::size_t at = c.line_number();
-    TextCursor l(content_line(c), 0);
+    const std::string_view text = content_line(c);
+    TextCursor l(text, 0);
     auto n = l.integer();
     if (!n || *n < 0) fail(name, at, "expected a face corner count");
+    if (static_cast<std::uint64_t>(*n) > text.size()) fail(name, at, "more face corners than the line holds");
     poly.resize(static_cast<std::size_t>(*n));
     for (auto& idx : poly) {
       auto i = l.integer();

@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 
 #include <bit>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 
 namespace curvetet::io {
@@ -121,6 +123,8 @@ mesh::PolygonSoup parse_ply(std::string_view bytes, const std::string& name) {
       e.name = std::string(l.token());
       auto n = l.integer();
       if (!n || *n < 0) fail(name, "bad element count for '" + e.name + "'");
+      // Every entry takes at least a byte: a larger count cannot be right.
+      if (static_cast<std::uint64_t>(*n) > bytes.size()) fail(name, "element count for '" + e.name + "' larger than the file");
       e.count = static_cast<std::size_t>(*n);
       elements.push_back(std::move(e));
     } else if (kw == "property") {
@@ -152,7 +156,8 @@ mesh::PolygonSoup parse_ply(std::string_view bytes, const std::string& name) {
           continue;
         }
         double n = body.next(p.count_type);
-        if (n < 0) fail(name, "negative list length");
+        if (!(n >= 0) || n != std::floor(n) || n > static_cast<double>(bytes.size()))
+          fail(name, "bad list length (negative, fractional or larger than the file)");
         std::vector<std::int64_t> list(static_cast<std::size_t>(n));
         for (auto& x : list) x = static_cast<std::int64_t>(body.next(p.type));
         if (is_face && (p.name == "vertex_indices" || p.name == "vertex_index")) soup.polygons.push_back(std::move(list));
