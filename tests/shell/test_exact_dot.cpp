@@ -3,6 +3,7 @@
 // band (issue 27: no hand-picked tolerance decides a sign).
 #include "curvetet/shell/exact_dot.hpp"
 
+#include <Eigen/Geometry>
 #include <gmpxx.h>
 #include <gtest/gtest.h>
 
@@ -71,4 +72,37 @@ TEST(ExactDot, OrientValueIsRelativelyAccurate) {
     const double rel = std::abs(error.get_d() / exact.get_d());
     ASSERT_LE(rel, 1e-12) << i;
   }
+}
+
+// The straightening's orientation test (β locally injective): the normals of
+// a triangle and of one built to contain that normal's direction are
+// orthogonal up to rounding, where the double dot product guesses the sign.
+TEST(ExactDot, NormalsDotSignIsExactWhereDoublesGuess) {
+  std::mt19937_64 rng(3);
+  auto cross = [](const V& u, const V& v) { return u.cross(v); };
+  int disagreements = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const V a = random_point(rng, 1), b = random_point(rng, 1), c = random_point(rng, 1), d = random_point(rng, 1);
+    const V n = cross(b - a, c - a);
+    const V e = d + n, f = d + (b - a);
+    // Exact: (n_exact) . (m_exact), both normals from the rounded points.
+    mpq_class nq[3], mq[3];
+    auto exact_normal = [](const V& p, const V& q, const V& r, mpq_class* out) {
+      mpq_class u[3], v[3];
+      for (int k = 0; k < 3; ++k) {
+        u[k] = mpq_class(q[k]) - mpq_class(p[k]);
+        v[k] = mpq_class(r[k]) - mpq_class(p[k]);
+      }
+      out[0] = u[1] * v[2] - u[2] * v[1];
+      out[1] = u[2] * v[0] - u[0] * v[2];
+      out[2] = u[0] * v[1] - u[1] * v[0];
+    };
+    exact_normal(a, b, c, nq);
+    exact_normal(d, e, f, mq);
+    const int exact = sgn(nq[0] * mq[0] + nq[1] * mq[1] + nq[2] * mq[2]);
+    const double in_doubles = n.dot(cross(e - d, f - d));
+    disagreements += (in_doubles > 0) - (in_doubles < 0) != exact;
+    ASSERT_EQ(curvetet::shell::normals_dot_sign(a, b, c, d, e, f), exact) << i;
+  }
+  EXPECT_GT(disagreements, 100); // the double formula really was a guess here
 }

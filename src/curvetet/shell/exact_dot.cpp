@@ -94,6 +94,24 @@ int normal_dot_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
   return exact_sign(a, b, c, p, q);
 }
 
+int normals_dot_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                     const Eigen::Vector3d& d, const Eigen::Vector3d& e, const Eigen::Vector3d& f) {
+  auto normal = [](const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r, mpq_class* n) {
+    mpq_class u[3], v[3];
+    for (int i = 0; i < 3; ++i) {
+      u[i] = mpq_class(q[i]) - mpq_class(p[i]);
+      v[i] = mpq_class(r[i]) - mpq_class(p[i]);
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+  };
+  mpq_class n[3], m[3];
+  normal(a, b, c, n);
+  normal(d, e, f, m);
+  return sgn(n[0] * m[0] + n[1] * m[1] + n[2] * m[2]);
+}
+
 double orient3d_value(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                       const Eigen::Vector3d& d) {
   // A repeated point: exactly degenerate (common: shell middle vertices are

@@ -21,4 +21,10 @@ int normal_dot_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 double orient3d_value(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                       const Eigen::Vector3d& d);
 
+// Exact sign of ((b - a) x (c - a)) . ((e - d) x (f - d)): whether two
+// triangles' normals point to the same side (rationals; for the few
+// triangles a feature straightening reshapes).
+int normals_dot_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                     const Eigen::Vector3d& d, const Eigen::Vector3d& e, const Eigen::Vector3d& f);
+
 } // namespace curvetet::shell

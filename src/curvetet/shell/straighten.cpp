@@ -1,5 +1,7 @@
 #include "curvetet/shell/straighten.hpp"
 
+#include "curvetet/shell/exact_dot.hpp"
+
 #include "curvetet/geometry/box_pairs.hpp"
 #include "curvetet/geometry/triangle_pair.hpp"
 #include "curvetet/shell/feature_tracking.hpp"
@@ -50,11 +52,14 @@ void plan_positions(const ShellEditor& e, const FeatureEdit& plan, StarCandidate
                        c.straightened.end());
 }
 
-// β stays locally injective: same orientation, area not collapsed.
+// β stays locally injective: same orientation, decided exactly. Besides,
+// a quality rule (not a guarantee): the area does not collapse below
+// 1e-10 of the input triangle's.
 bool keeps_area(const Triangle& now, const Triangle& input) {
+  if (normals_dot_sign(now[0], now[1], now[2], input[0], input[1], input[2]) <= 0) return false;
   const Vec3 n = (now[1] - now[0]).cross(now[2] - now[0]);
   const Vec3 n0 = (input[1] - input[0]).cross(input[2] - input[0]);
-  return n.dot(n0) > 0 && n.norm() > 1e-10 * n0.norm();
+  return n.norm() > 1e-10 * n0.norm();
 }
 
 bool degenerate(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
