@@ -182,4 +182,11 @@ TEST(SurfaceRead, CountsLargerThanTheFileAreRejectedNotAllocated) {
                                               "1e300 0 1 2\n",
                                  SurfaceFormat::ply, "x.ply"),
                Error);
+  // An index beyond int64 (3e42) or fractional is an error, not a conversion.
+  for (const char* face : {"3 0 1 3e42\n", "3 0 1 1.5\n", "3 0 1 nan\n"})
+    EXPECT_THROW(io::parse_surface(ply_header + "1\nproperty list uchar float vertex_indices\nend_header\n0 0 0\n1 0 0\n"
+                                                "0 1 0\n" + face,
+                                   SurfaceFormat::ply, "x.ply"),
+                 Error)
+        << face;
 }

@@ -159,7 +159,12 @@ mesh::PolygonSoup parse_ply(std::string_view bytes, const std::string& name) {
         if (!(n >= 0) || n != std::floor(n) || n > static_cast<double>(bytes.size()))
           fail(name, "bad list length (negative, fractional or larger than the file)");
         std::vector<std::int64_t> list(static_cast<std::size_t>(n));
-        for (auto& x : list) x = static_cast<std::int64_t>(body.next(p.type));
+        for (auto& x : list) {
+          // Indices travel as doubles here; only integers an int64 holds convert.
+          const double v = body.next(p.type);
+          if (!(std::abs(v) < 0x1p62) || v != std::floor(v)) fail(name, "list entry not an integer index");
+          x = static_cast<std::int64_t>(v);
+        }
         if (is_face && (p.name == "vertex_indices" || p.name == "vertex_index")) soup.polygons.push_back(std::move(list));
       }
     }
