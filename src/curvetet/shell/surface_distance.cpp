@@ -115,12 +115,9 @@ double distance_to_face(const Vec3& x, const Faces& f, int t) {
   return (x - closest_point_on_triangle(x, c[0], c[1], c[2])).norm();
 }
 
-// Distance from x to the faces (the face reached into `face`), starting
-// from face `face` (lattice neighbours share faces, which prunes the others
-// by box). Stops at the first face within `enough`: the caller keeps a
-// running maximum, which a sample that close cannot raise, and any single
-// face bounds the distance (so the cell bounds stay upper bounds).
-double nearest_face(const Vec3& x, const Faces& f, double enough, int& face) {
+// Distance from x to the nearest face (into `face`), starting from face
+// `face` (lattice neighbours share faces, which prunes the others by box).
+double nearest_face(const Vec3& x, const Faces& f, int& face) {
   double best = std::numeric_limits<double>::infinity();
   int best_face = -1;
   auto visit = [&](int t) {
@@ -132,7 +129,7 @@ double nearest_face(const Vec3& x, const Faces& f, double enough, int& face) {
     }
   };
   if (face >= 0) visit(face);
-  for (int t = 0; t < static_cast<int>(f.corners.size()) && best > enough; ++t) visit(t);
+  for (int t = 0; t < static_cast<int>(f.corners.size()); ++t) visit(t);
   face = best_face;
   return best;
 }
@@ -184,7 +181,7 @@ PatchDistance lattice_bound(const BernsteinPatch& p, const Faces& f, int n, doub
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i + j <= n; ++i) {
       s.x.push_back(evaluate(p, double(i) / n, double(j) / n));
-      s.d.push_back(nearest_face(s.x.back(), f, out.sampled, hint));
+      s.d.push_back(nearest_face(s.x.back(), f, hint));
       s.face.push_back(hint);
       out.sampled = std::max(out.sampled, s.d.back());
       if (out.sampled > give_up) return out;
