@@ -5,10 +5,14 @@
 # Seeds come from ../shared/data and, when the Release build exists, from a
 # main-job output (MSH and map). Findings are written to build-fuzz/findings/
 # and make the script fail.
-# Usage: scripts/fuzz.sh [SECONDS]
+# With RUNS, each harness runs exactly RUNS inputs from seed 1 instead of
+# for SECONDS (what CI does: the same verdict on every run of one commit).
+# Usage: scripts/fuzz.sh [SECONDS] [RUNS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
+limit=(-max_total_time="$seconds")
+[ -n "${2:-}" ] && limit=(-runs="$2" -seed=1)
 bash scripts/install-deps.sh fuzz
 if [ ! -f build-fuzz/build.ninja ]; then
   CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCURVETET_FUZZ=ON \
@@ -56,9 +60,9 @@ fi
 
 failed=0
 for r in "${readers[@]}"; do
-  echo "fuzzing the $r reader for $seconds s"
+  echo "fuzzing the $r reader (${limit[*]})"
   mkdir -p "build-fuzz/corpus/$r"
-  if ! build-fuzz/fuzz/fuzz_$r "build-fuzz/corpus/$r" "$seeds/$r" -max_total_time="$seconds" -max_len=65536 \
+  if ! build-fuzz/fuzz/fuzz_$r "build-fuzz/corpus/$r" "$seeds/$r" "${limit[@]}" -max_len=65536 \
       -rss_limit_mb=4096 -artifact_prefix="build-fuzz/findings/$r-" -print_final_stats=1 >"build-fuzz/fuzz_$r.log" 2>&1; then
     echo "FINDING in the $r reader: see build-fuzz/fuzz_$r.log and build-fuzz/findings/"
     tail -30 "build-fuzz/fuzz_$r.log"

@@ -55,6 +55,11 @@ TEST(FeatureFile, RejectsWhatDoesNotFitTheMesh) {
   expect_bad(R"({"points": {"faces": [0, 1], "barycentric": [[1,0,0]]}})", "2 faces but 1");
   expect_bad(R"({"edges": [[0,1]],)", "malformed");
   expect_bad(R"({"edges": "none"})", "malformed");
+  // Fuzz findings (issue 27): numbers no int holds are errors, not conversions.
+  expect_bad(R"({"corners": [2e62]})", "malformed");
+  expect_bad(R"({"edges": [[0, 99999999999999999999]]})", "malformed");
+  expect_bad(R"({"points": {"faces": [-9999999999]}})", "malformed");
+  expect_bad(R"({"edges": [[0, 1, 2]]})", "malformed");
 }
 
 TEST(FeatureDetection, CubeEdgesAreFeaturesDiagonalsAreNot) {
