@@ -132,3 +132,11 @@ TEST(Msh, HugeNodeCountIsAParseError) {
                           "1 18446744073709551000 1 18446744073709551000\n3 1 0 1\n";
   EXPECT_THROW(io::parse_msh(msh, "x.msh"), Error);
 }
+
+// A fuzz finding (issue 27): a block of an unsupported element type whose
+// count exceeds the file skipped "lines" past its end for ~2^64 rounds.
+TEST(Msh, UnsupportedBlockLongerThanTheFileIsAParseError) {
+  const std::string msh = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Elements\n1 18446744073709551000 1 1\n"
+                          "2 1 99 18446744073709551000\n1 1 2 3\n";
+  EXPECT_THROW(io::parse_msh(msh, "x.msh"), Error);
+}

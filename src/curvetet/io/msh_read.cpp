@@ -201,7 +201,11 @@ void read_elements_v41(MshCursor& c, bool binary, const EntityPhysical& phys, Ra
     if (per == 0) {
       if (binary) c.fail(fmt::format("unsupported element type {} in a binary file", type));
       c.skip_line_end();
-      for (std::uint64_t i = 0; i < n; ++i) c.rest_of_line();
+      for (std::uint64_t i = 0; i < n; ++i) {
+        // A count from the file: stop at its end, not after n empty lines.
+        if (c.at_end()) c.fail("the file ends inside an element block");
+        c.rest_of_line();
+      }
       continue;
     }
     auto it = phys.find({dim, tag});
