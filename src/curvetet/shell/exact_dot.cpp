@@ -5,6 +5,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -23,16 +24,21 @@ constexpr double kUnit = 0x1p-53;
 constexpr double kTripleProductError = (7 + 56 * kUnit) * kUnit;
 constexpr double kNoUnderflow = 1e-250;
 
+// (b - a) x (c - a) in rationals (exact: the inputs are doubles).
+std::array<mpq_class, 3> exact_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  mpq_class u[3], v[3];
+  for (int i = 0; i < 3; ++i) {
+    u[i] = mpq_class(b[i]) - mpq_class(a[i]);
+    v[i] = mpq_class(c[i]) - mpq_class(a[i]);
+  }
+  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+}
+
 int exact_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& p,
                const Eigen::Vector3d& q) {
-  mpq_class e1[3], e2[3], h[3];
-  for (int i = 0; i < 3; ++i) {
-    e1[i] = mpq_class(b[i]) - mpq_class(a[i]);
-    e2[i] = mpq_class(c[i]) - mpq_class(a[i]);
-    h[i] = mpq_class(q[i]) - mpq_class(p[i]);
-  }
-  mpq_class det = (e1[1] * e2[2] - e1[2] * e2[1]) * h[0] + (e1[2] * e2[0] - e1[0] * e2[2]) * h[1] +
-                  (e1[0] * e2[1] - e1[1] * e2[0]) * h[2];
+  const auto n = exact_normal(a, b, c);
+  mpq_class det = 0;
+  for (int i = 0; i < 3; ++i) det += n[i] * (mpq_class(q[i]) - mpq_class(p[i]));
   return sgn(det);
 }
 
@@ -96,19 +102,7 @@ int normal_dot_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 
 int normals_dot_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                      const Eigen::Vector3d& d, const Eigen::Vector3d& e, const Eigen::Vector3d& f) {
-  auto normal = [](const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r, mpq_class* n) {
-    mpq_class u[3], v[3];
-    for (int i = 0; i < 3; ++i) {
-      u[i] = mpq_class(q[i]) - mpq_class(p[i]);
-      v[i] = mpq_class(r[i]) - mpq_class(p[i]);
-    }
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
-  };
-  mpq_class n[3], m[3];
-  normal(a, b, c, n);
-  normal(d, e, f, m);
+  const auto n = exact_normal(a, b, c), m = exact_normal(d, e, f);
   return sgn(n[0] * m[0] + n[1] * m[1] + n[2] * m[2]);
 }
 
