@@ -97,11 +97,22 @@ double scaled_jacobian(const Eigen::Matrix3d& j) {
   const double aa = a.squaredNorm(), bb = b.squaredNorm(), cc = c.squaredNorm();
   const double ab = (b - a).squaredNorm(), ac = (c - a).squaredNorm(), bc = (c - b).squaredNorm();
   const double frames[4] = {aa * bb * cc, aa * ab * ac, bb * ab * bc, cc * ac * bc};
-  double best = std::numeric_limits<double>::infinity();
+  // det / sqrt(f) is monotone in f, so one square root decides the min over
+  // the corners: at the largest f when det > 0, else at the smallest
+  // positive one; a degenerate frame (f = 0) counts as +-1.
+  double largest = 0, smallest_positive = 0;
+  bool degenerate = false;
   for (double f : frames) {
-    const double s = f > 0 ? std::sqrt(2.0) * det / std::sqrt(f) : (det > 0 ? 1.0 : -1.0);
-    best = std::min(best, s);
+    if (!(f > 0)) {
+      degenerate = true;
+      continue;
+    }
+    largest = std::max(largest, f);
+    smallest_positive = smallest_positive > 0 ? std::min(smallest_positive, f) : f;
   }
+  double best = degenerate ? (det > 0 ? 1.0 : -1.0) : std::numeric_limits<double>::infinity();
+  const double f = det > 0 ? largest : smallest_positive;
+  if (f > 0) best = std::min(best, std::sqrt(2.0) * det / std::sqrt(f));
   return best;
 }
 

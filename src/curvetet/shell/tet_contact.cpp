@@ -17,6 +17,30 @@ bool point_in_closed_tet(const Vec3& p, const Vec3* t[4]) {
          orient3d(*t[0], *t[1], p, *t[3]) >= 0 && orient3d(*t[0], *t[1], *t[2], p) >= 0;
 }
 
+// Whether the triangle's and the tet's boxes are disjoint, or the triangle
+// lies strictly outside one face plane of a positive tet: cheap exact
+// proofs that the closed sets do not meet (most pairs a caller tries).
+bool separated_quickly(const Vec3* tri[3], const Vec3* t[4]) {
+  for (int a = 0; a < 3; ++a) {
+    const double tri_lo = std::min({(*tri[0])[a], (*tri[1])[a], (*tri[2])[a]});
+    const double tri_hi = std::max({(*tri[0])[a], (*tri[1])[a], (*tri[2])[a]});
+    const double tet_lo = std::min({(*t[0])[a], (*t[1])[a], (*t[2])[a], (*t[3])[a]});
+    const double tet_hi = std::max({(*t[0])[a], (*t[1])[a], (*t[2])[a], (*t[3])[a]});
+    if (tri_hi < tet_lo || tet_hi < tri_lo) return true;
+  }
+  if (orient3d(*t[0], *t[1], *t[2], *t[3]) <= 0) return false;
+  for (int l = 0; l < 4; ++l) {
+    bool outside = true;
+    for (int i = 0; i < 3 && outside; ++i) {
+      const Vec3* q[4] = {t[0], t[1], t[2], t[3]};
+      q[l] = tri[i];
+      outside = orient3d(*q[0], *q[1], *q[2], *q[3]) < 0;
+    }
+    if (outside) return true;
+  }
+  return false;
+}
+
 // Candidate separating planes all pass through the allowed corners. Each
 // one that weakly separates (the triangle's other corners on one closed side,
 // the tet's other corners on the other) is oriented so the triangle is on
@@ -55,6 +79,7 @@ struct Separation {
 } // namespace
 
 bool triangle_meets_tet(const Vec3* tri[3], const Vec3* tet[4]) {
+  if (separated_quickly(tri, tet)) return false;
   for (int i = 0; i < 3; ++i)
     if (point_in_closed_tet(*tri[i], tet)) return true;
   for (int i = 0; i < 4; ++i)

@@ -26,6 +26,7 @@ using Vec3 = Eigen::Vector3d;
 // tets whose shape it changes.
 struct Move {
   int key = -1; // the node the move is named after (corner v, or the node)
+  bool corner = false;
   std::vector<std::pair<int, double>> nodes;
   std::vector<int> tets;
 };
@@ -40,6 +41,20 @@ struct Scratch {
 };
 
 constexpr std::size_t kBatchSize = 64; // moves tried in parallel at once
+constexpr std::size_t kCompassTries = 3; // certificates tried for the compass search's best steps
+
+// The 26 unit directions towards the neighbours of a cube's centre.
+const std::vector<Eigen::Vector3d>& compass_directions() {
+  static const std::vector<Eigen::Vector3d> dirs = [] {
+    std::vector<Eigen::Vector3d> out;
+    for (int i = -1; i <= 1; ++i)
+      for (int j = -1; j <= 1; ++j)
+        for (int k = -1; k <= 1; ++k)
+          if (i || j || k) out.push_back(Eigen::Vector3d(i, j, k).normalized());
+    return out;
+  }();
+  return dirs;
+}
 
 // What a sweep improves: the max AMIPS of the touched tets, or their min
 // scaled Jacobian (kept from getting worse by the other goal's moves).
@@ -118,7 +133,6 @@ class CurvedOptimizer {
     std::vector<long> locked(m_.num_tets(), -1); // batch that holds a tet
     struct Job {
       Move mv;
-      bool corner = false;
       Outcome outcome = Outcome::rejected_quality;
     };
     std::vector<Job> batch;
@@ -151,7 +165,7 @@ class CurvedOptimizer {
         for (int x : mv.tets) last_change = std::max(last_change, changed_at_[x]);
         if (last_change < failed_at_[static_cast<int>(goal)][id]) continue;
         for (int x : mv.tets) locked[x] = clock_;
-        batch.push_back({std::move(mv), i < 4});
+        batch.push_back({std::move(mv)});
       }
       pending.swap(later);
       if (batch.empty()) continue;
@@ -177,7 +191,7 @@ class CurvedOptimizer {
       for (const Job& j : batch) {
         switch (j.outcome) {
           case Outcome::accepted:
-            ++(j.corner ? stats.vertex_moves : stats.node_moves);
+            ++(j.mv.corner ? stats.vertex_moves : stats.node_moves);
             if (goal == Goal::scaled_jacobian) ++stats.scaled_jacobian_moves;
             for (int x : j.mv.tets) changed_at_[x] = clock_;
             break;
@@ -230,6 +244,7 @@ class CurvedOptimizer {
   Move vertex_move(int v) const {
     Move mv;
     mv.key = v;
+    mv.corner = true;
     for (int k = offset_[v]; k < offset_[v + 1]; ++k) {
       const auto [t, local] = uses_[k];
       mv.tets.push_back(t);
@@ -343,7 +358,8 @@ class CurvedOptimizer {
 
   // Tries the move along a descent direction of the goal with halving
   // steps; keeps the first step that improves the goal without hurting the
-  // other measure and whose touched tets are all certified positive.
+  // other measure and whose touched tets are all certified positive (for a
+  // corner, then the best compass steps).
   Outcome try_move(const Move& mv, Goal goal, Scratch& x) {
     double amips0 = 0, sj0 = std::numeric_limits<double>::infinity();
     for (int t : mv.tets) {
@@ -381,28 +397,54 @@ class CurvedOptimizer {
     // raise the mesh's max AMIPS (as it was when the sweep began).
     const double amips_bound = goal == Goal::amips ? amips0 * (1 - 1e-6) : sweep_max_amips_;
     const double sj_floor = goal == Goal::amips ? std::min(sj0, o_.min_scaled_jacobian) : sj0 * (1 + 1e-6);
+    // The goal's value at d under the constraints above (lower is better),
+    // or +inf where a constraint fails.
+    const auto constrained = [&](const Vec3& d) {
+      const double a = trial_amips(x, all, d, amips_bound);
+      if (!(a < amips_bound)) return std::numeric_limits<double>::infinity();
+      const double sj = trial_scaled_jacobian(x, all, d, sj_floor);
+      if (goal == Goal::amips ? sj < sj_floor : !(sj > sj_floor)) return std::numeric_limits<double>::infinity();
+      return goal == Goal::amips ? a : -sj;
+    };
     std::vector<Vec3> saved;
     for (const auto& [id, w] : mv.nodes) saved.push_back(m_.nodes[id]);
     bool certificate_failed = false;
-    // Halving steps from a quarter of the longest edge down to the shortest
-    // edge's quarter halved line_search_steps - 1 times.
-    const double smallest = 0.25 * h * std::pow(0.5, o_.line_search_steps - 1);
-    for (double step = 0.25 * h_max; step >= smallest; step *= 0.5) {
-      const Vec3 d = step * dir;
-      if (!(trial_amips(x, all, d, amips_bound) < amips_bound)) continue;
-      const double sj = trial_scaled_jacobian(x, all, d, sj_floor);
-      if (goal == Goal::amips ? sj < sj_floor : !(sj > sj_floor)) continue;
+    const auto certified_at = [&](const Vec3& d) {
       place(mv, saved, d);
       bool ok = true;
       for (int t : mv.tets) ok = ok && certified(t);
       if (ok) {
         for (std::size_t k = 0; k < mv.tets.size(); ++k) evaluate(mv.tets[k], x.frames[k]);
-        return Outcome::accepted;
+        return true;
       }
       certificate_failed = true;
       place(mv, saved, Vec3::Zero()); // saved + 0 * d: bit-exact restore
-    }
-    return certificate_failed ? Outcome::rejected_certificate : Outcome::rejected_quality;
+      return false;
+    };
+    // Halving steps from a quarter of the longest edge down to the shortest
+    // edge's quarter halved line_search_steps - 1 times.
+    const double smallest = 0.25 * h * std::pow(0.5, o_.line_search_steps - 1);
+    for (double step = 0.25 * h_max; step >= smallest; step *= 0.5)
+      if (std::isfinite(constrained(step * dir)) && certified_at(step * dir)) return Outcome::accepted;
+
+    // The max over samples is not smooth: where the descent direction of a
+    // corner is stuck at a kink, the best of a fixed set of directions and
+    // the same steps often is not (certified best first, a few tries). Node
+    // moves skip it: they are many and rarely the limit.
+    const auto rejected = [&] { return certificate_failed ? Outcome::rejected_certificate : Outcome::rejected_quality; };
+    if (!mv.corner) return rejected();
+    std::vector<std::pair<double, Vec3>> found;
+    for (double step = 0.25 * h_max; step >= smallest; step *= 0.5)
+      for (const Vec3& u : compass_directions()) {
+        const double value = constrained(step * u);
+        if (std::isfinite(value)) found.emplace_back(value, step * u);
+      }
+    const auto keep = std::min<std::size_t>(found.size(), kCompassTries);
+    std::partial_sort(found.begin(), found.begin() + keep, found.end(),
+                      [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t k = 0; k < keep; ++k)
+      if (certified_at(found[k].second)) return Outcome::accepted;
+    return rejected();
   }
 
   mesh::TetMesh& m_;

@@ -17,7 +17,8 @@
 // Each pass sweeps the tets of high max AMIPS, then those of low min scaled
 // Jacobian. d is a descent direction of the sweep's goal over the touched
 // tets (central finite differences), tried with halving steps from a quarter
-// of the longest touched edge. A move is
+// of the longest touched edge; for a vertex move where none of those steps
+// passes, the best of the 26 compass directions at the same steps. A move is
 // kept only if it improves the goal without hurting the other measure (see
 // CurvedOptimizeOptions) AND highorder::certify_tet says `positive` for
 // every touched tet (undecided = rejected); otherwise the nodes are restored

@@ -334,12 +334,12 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
                    round + 1, m.num_tets(), changed, std::chrono::duration<double>(t1 - t0).count(),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), now.max_amips,
                    now.min_scaled_jacobian);
-    // Another round pays only while very bad tets are left (above
-    // split_amips) and this one moved an extreme.
+    // Another round pays only while tets above collapse_amips are left and
+    // this one moved an extreme.
     const bool gained = now.max_amips < (1 - o.smoothing.min_gain) * last.max_amips ||
                         now.min_scaled_jacobian > (1 + o.smoothing.min_gain) * last.min_scaled_jacobian;
     last = now;
-    if (changed < o.min_operations * m.num_tets() || !gained || now.max_amips <= o.split_amips) break;
+    if (changed < o.min_operations * m.num_tets() || !gained || now.max_amips <= o.collapse_amips) break;
   }
   const MeshQuality after = mesh_quality(m);
   s.tets_after = m.num_tets();

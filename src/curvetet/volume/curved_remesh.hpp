@@ -18,7 +18,7 @@
 //  3. the quality pass again, for the tets above collapse_amips;
 //  4. smoothing (optimize_curved, on the convention's order-2P lattice).
 // No operation takes a tet below min(min_scaled_jacobian, the old star's
-// min scaled Jacobian). Rounds stop when no tet above split_amips is left,
+// min scaled Jacobian). Rounds stop when no tet above collapse_amips is left,
 // or one runs fewer than min_operations (x tets) operations or moves neither
 // extreme by smoothing.min_gain. Sequential, so
 // the result does not depend on the thread count.
