@@ -226,11 +226,19 @@ class CurvedOptimizer {
     table_.frames(nodes, k);
   }
 
-  // Refreshes amips_[t] and sj_[t] from tet t's nodes, using k as scratch.
+  // Refreshes tet t's frames (into k) and amips_[t], sj_[t].
   void evaluate(int t, Eigen::Matrix3d* k) {
     frames(t, k);
-    amips_[t] = table_.max_amips(k, nullptr, Vec3::Zero());
-    sj_[t] = table_.min_scaled_jacobian(k, nullptr, Vec3::Zero());
+    const auto q = quality(t);
+    amips_[t] = q.max_amips;
+    sj_[t] = q.min_scaled_jacobian;
+  }
+
+  // At every sample of the convention (highorder/quality.hpp), as reported.
+  highorder::TetQuality quality(int t) const {
+    Vec3 nodes[165];
+    m_.tet_positions(t, nodes);
+    return highorder::tet_quality(m_.order, nodes);
   }
 
   bool certified(int t) const {
@@ -409,15 +417,30 @@ class CurvedOptimizer {
     std::vector<Vec3> saved;
     for (const auto& [id, w] : mv.nodes) saved.push_back(m_.nodes[id]);
     bool certificate_failed = false;
-    const auto certified_at = [&](const Vec3& d) {
+    // Keeps d when the touched tets meet the constraints at every sample of
+    // the convention (the trials above see its order-2P lattice only, so
+    // what is reported is what is optimized) and are certified positive.
+    std::vector<highorder::TetQuality> quality_at(mv.tets.size());
+    const auto accept_at = [&](const Vec3& d) {
       place(mv, saved, d);
-      bool ok = true;
+      double a = 0, sj = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < mv.tets.size(); ++k) {
+        quality_at[k] = quality(mv.tets[k]);
+        a = std::max(a, quality_at[k].max_amips);
+        sj = std::min(sj, quality_at[k].min_scaled_jacobian);
+      }
+      const bool fits = a < amips_bound && (goal == Goal::amips ? sj >= sj_floor : sj > sj_floor);
+      bool ok = fits;
       for (int t : mv.tets) ok = ok && certified(t);
       if (ok) {
-        for (std::size_t k = 0; k < mv.tets.size(); ++k) evaluate(mv.tets[k], x.frames[k]);
+        for (std::size_t k = 0; k < mv.tets.size(); ++k) {
+          frames(mv.tets[k], x.frames[k]);
+          amips_[mv.tets[k]] = quality_at[k].max_amips;
+          sj_[mv.tets[k]] = quality_at[k].min_scaled_jacobian;
+        }
         return true;
       }
-      certificate_failed = true;
+      certificate_failed = certificate_failed || fits;
       place(mv, saved, Vec3::Zero()); // saved + 0 * d: bit-exact restore
       return false;
     };
@@ -425,7 +448,7 @@ class CurvedOptimizer {
     // edge's quarter halved line_search_steps - 1 times.
     const double smallest = 0.25 * h * std::pow(0.5, o_.line_search_steps - 1);
     for (double step = 0.25 * h_max; step >= smallest; step *= 0.5)
-      if (std::isfinite(constrained(step * dir)) && certified_at(step * dir)) return Outcome::accepted;
+      if (std::isfinite(constrained(step * dir)) && accept_at(step * dir)) return Outcome::accepted;
 
     // The max over samples is not smooth: where the descent direction of a
     // corner is stuck at a kink, the best of a fixed set of directions and
@@ -443,7 +466,7 @@ class CurvedOptimizer {
     std::partial_sort(found.begin(), found.begin() + keep, found.end(),
                       [](const auto& a, const auto& b) { return a.first < b.first; });
     for (std::size_t k = 0; k < keep; ++k)
-      if (certified_at(found[k].second)) return Outcome::accepted;
+      if (accept_at(found[k].second)) return Outcome::accepted;
     return rejected();
   }
 
