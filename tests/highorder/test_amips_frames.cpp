@@ -1,6 +1,7 @@
 // AmipsFrames: the frame form gives the max AMIPS and min scaled Jacobian
-// of the quality convention's order-2P lattice (the smoothing's objective),
-// and a rank-one update equals recomputing the frames from moved nodes.
+// of the quality convention (every sample: tet_quality's; the order-2P
+// lattice first, the smoothing's trials), and a rank-one update equals
+// recomputing the frames from moved nodes.
 #include "curvetet/highorder/amips_frames.hpp"
 #include "curvetet/highorder/bernstein.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
@@ -24,7 +25,8 @@ double frames_max_amips(int order, const std::vector<Eigen::Vector3d>& nodes) {
   const AmipsFrames& f = amips_frames(order);
   std::vector<Eigen::Matrix3d> k(f.num_points());
   f.frames(nodes.data(), k.data());
-  return f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero());
+  return f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero(), std::numeric_limits<double>::infinity(),
+                     f.num_lattice_points());
 }
 
 // The quality convention's measures on its order-2P lattice alone, point
@@ -51,11 +53,18 @@ TEST(AmipsFrames, MatchesTetQuality) {
     const AmipsFrames& f = amips_frames(p);
     std::vector<Eigen::Matrix3d> k(f.num_points());
     f.frames(nodes.data(), k.data());
-    EXPECT_NEAR(f.min_scaled_jacobian(k.data(), nullptr, Eigen::Vector3d::Zero()), expected.min_scaled_jacobian, 1e-12)
+    EXPECT_NEAR(f.min_scaled_jacobian(k.data(), nullptr, Eigen::Vector3d::Zero(),
+                                      -std::numeric_limits<double>::infinity(), f.num_lattice_points()),
+                expected.min_scaled_jacobian, 1e-12)
         << "order " << p;
-    EXPECT_EQ(f.num_points(), quality_lattice_points(p));
-    // The report's full sample set can only be worse.
-    EXPECT_GE(tet_quality(p, nodes.data()).max_amips, expected.max_amips * (1 - 1e-12));
+    EXPECT_EQ(f.num_lattice_points(), quality_lattice_points(p));
+    EXPECT_EQ(f.num_points(), static_cast<int>(quality_samples(p).size()));
+    // Every sample: what the report gives (tet_quality), which can only be
+    // worse than the lattice's.
+    const TetQuality all = tet_quality(p, nodes.data());
+    EXPECT_NEAR(f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero()), all.max_amips, 1e-12 * all.max_amips);
+    EXPECT_NEAR(f.min_scaled_jacobian(k.data(), nullptr, Eigen::Vector3d::Zero()), all.min_scaled_jacobian, 1e-12);
+    EXPECT_GE(all.max_amips, expected.max_amips * (1 - 1e-12));
   }
   // The regular tet: AMIPS 3 (quality.hpp's convention), scaled Jacobian 1.
   const std::array<Eigen::Vector3d, 4> regular = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
@@ -85,8 +94,9 @@ TEST(AmipsFrames, RankOneUpdateEqualsRecomputedFrames) {
     f.add_direction(local, 1.0, c.data());
     auto moved = nodes;
     moved[local] += d;
-    EXPECT_NEAR(f.max_amips(k.data(), c.data(), d), frames_max_amips(p, moved), 1e-10) << "node " << local;
-    EXPECT_NEAR(f.min_scaled_jacobian(k.data(), c.data(), d), lattice_quality(p, moved).min_scaled_jacobian, 1e-10);
+    const TetQuality expected = tet_quality(p, moved.data());
+    EXPECT_NEAR(f.max_amips(k.data(), c.data(), d), expected.max_amips, 1e-10) << "node " << local;
+    EXPECT_NEAR(f.min_scaled_jacobian(k.data(), c.data(), d), expected.min_scaled_jacobian, 1e-10);
   }
   std::vector<Eigen::Vector3d> c(f.num_points(), Eigen::Vector3d::Zero());
   auto moved = nodes;
@@ -96,7 +106,7 @@ TEST(AmipsFrames, RankOneUpdateEqualsRecomputedFrames) {
     f.add_direction(i, w, c.data());
     moved[i] += w * d;
   }
-  EXPECT_NEAR(f.max_amips(k.data(), c.data(), d), frames_max_amips(p, moved), 1e-10);
+  EXPECT_NEAR(f.max_amips(k.data(), c.data(), d), tet_quality(p, moved.data()).max_amips, 1e-10);
 }
 
 TEST(AmipsFrames, InvertedIsInfiniteAndBoundStopsEarly) {

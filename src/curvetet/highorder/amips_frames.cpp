@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -21,13 +22,9 @@ AmipsFrames::AmipsFrames(int order) {
   w_.col(2) << 0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0);
   const Eigen::Matrix3d w_inv = w_.inverse();
   nodes_ = tet_node_count(order);
-  // The smoothing's objective: the convention's order-2P lattice (the first
-  // quality_lattice_points of quality_samples). The degree-3(P-1) points
-  // would cost 2.3x per move at P = 4 for a few % on the min scaled
-  // Jacobian; what is reported, and the topology operations' checks, take
-  // every sample (docs/usable_elements.md).
   const std::vector<Eigen::Vector3d>& xis = quality_samples(order);
-  points_ = quality_lattice_points(order);
+  points_ = static_cast<int>(xis.size());
+  lattice_points_ = quality_lattice_points(order);
   h_.resize(nodes_, 3 * points_);
   for (int q = 0; q < points_; ++q) h_.middleCols<3>(3 * q) = lagrange_gradients(3, order, xis[q].data()) * w_inv;
 }
@@ -45,10 +42,11 @@ void AmipsFrames::add_direction(int local, double w, Eigen::Vector3d* c) const {
 }
 
 double AmipsFrames::max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,
-                              double bound) const {
+                              double bound, int points) const {
+  const int n = points < 0 ? points_ : std::min(points, points_);
   const double bound_cubed = bound * bound * bound;
   double worst_cubed = 0;
-  for (int q = 0; q < points_ && worst_cubed < bound_cubed; ++q) {
+  for (int q = 0; q < n && worst_cubed < bound_cubed; ++q) {
     Eigen::Matrix3d k = frames[q];
     if (c) k.noalias() += d * c[q].transpose();
     const double det = k.determinant();
@@ -60,9 +58,10 @@ double AmipsFrames::max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector
 }
 
 double AmipsFrames::min_scaled_jacobian(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c,
-                                        const Eigen::Vector3d& d, double floor) const {
+                                        const Eigen::Vector3d& d, double floor, int points) const {
+  const int n = points < 0 ? points_ : std::min(points, points_);
   double worst = std::numeric_limits<double>::infinity();
-  for (int q = 0; q < points_ && !(worst < floor); ++q) {
+  for (int q = 0; q < n && !(worst < floor); ++q) {
     Eigen::Matrix3d k = frames[q];
     if (c) k.noalias() += d * c[q].transpose();
     worst = std::min(worst, scaled_jacobian(k * w_));

@@ -1,8 +1,11 @@
 #pragma once
-// Quality of an order-P tet at the order-2P lattice of the quality
-// convention (quality.hpp: the first quality_lattice_points(P) of
-// quality_samples(P), corners and Lagrange nodes included), kept as frames so that the optimizer
-// can try node moves without recomputing the Jacobians.
+// Quality of an order-P tet at the sample points of the quality convention
+// (quality.hpp's quality_samples(P): the order-2P lattice first, corners and
+// Lagrange nodes included, then the degree-3(P-1) lattice's other points),
+// kept as frames so that the optimizer can try node moves without
+// recomputing the Jacobians. The measures can stop after the first
+// `points` samples: the optimizer's trials use the order-2P lattice alone
+// (2.3x cheaper at P = 4), its acceptance every sample.
 //
 // Frame q of a tet with nodes x_l: K_q = J(xi_q) W^-1 = sum_l x_l h_{l,q}^T,
 // h_{l,q} = W^-T grad phi_l(xi_q) (W as in quality.hpp). Moving node l by
@@ -23,7 +26,8 @@ namespace curvetet::highorder {
 class AmipsFrames {
  public:
   explicit AmipsFrames(int order); // 1..8
-  int num_points() const { return points_; } // the order-2P lattice
+  int num_points() const { return points_; }                 // every sample
+  int num_lattice_points() const { return lattice_points_; } // the order-2P lattice's, first
   int num_nodes() const { return nodes_; }
 
   // frames[q] = K_q for q < num_points(); nodes in internal (Gmsh) order.
@@ -31,17 +35,18 @@ class AmipsFrames {
   // c[q] += w h_{local,q} for every point q.
   void add_direction(int local, double w, Eigen::Vector3d* c) const;
 
-  // Max over all points of AMIPS(K_q + d c_q^T) (c == nullptr: of
-  // K_q). Stops at the first point reaching `bound` (the result is then >= bound).
+  // Max over points q < `points` (-1: all) of AMIPS(K_q + d c_q^T)
+  // (c == nullptr: of K_q). Stops at the first point reaching `bound` (the
+  // result is then >= bound).
   double max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,
-                   double bound = std::numeric_limits<double>::infinity()) const;
-  // Min over all points of the scaled Jacobian of (K_q + d c_q^T) W. Stops
-  // at the first point below `floor` (the result is then < floor).
+                   double bound = std::numeric_limits<double>::infinity(), int points = -1) const;
+  // Min over the same points of the scaled Jacobian of (K_q + d c_q^T) W.
+  // Stops at the first point below `floor` (the result is then < floor).
   double min_scaled_jacobian(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,
-                             double floor = -std::numeric_limits<double>::infinity()) const;
+                             double floor = -std::numeric_limits<double>::infinity(), int points = -1) const;
 
  private:
-  int points_ = 0, nodes_ = 0;
+  int points_ = 0, lattice_points_ = 0, nodes_ = 0;
   Eigen::Matrix3d w_;  // reference tet -> regular tet
   Eigen::MatrixXd h_;  // nodes_ x (3 points_): row l, columns 3q..3q+2 = h_{l,q}^T
 };

@@ -226,19 +226,12 @@ class CurvedOptimizer {
     table_.frames(nodes, k);
   }
 
-  // Refreshes tet t's frames (into k) and amips_[t], sj_[t].
+  // Refreshes tet t's frames (into k) and amips_[t], sj_[t] (every sample
+  // of the convention, as reported).
   void evaluate(int t, Eigen::Matrix3d* k) {
     frames(t, k);
-    const auto q = quality(t);
-    amips_[t] = q.max_amips;
-    sj_[t] = q.min_scaled_jacobian;
-  }
-
-  // At every sample of the convention (highorder/quality.hpp), as reported.
-  highorder::TetQuality quality(int t) const {
-    Vec3 nodes[165];
-    m_.tet_positions(t, nodes);
-    return highorder::tet_quality(m_.order, nodes);
+    amips_[t] = table_.max_amips(k, nullptr, Vec3::Zero());
+    sj_[t] = table_.min_scaled_jacobian(k, nullptr, Vec3::Zero());
   }
 
   bool certified(int t) const {
@@ -322,25 +315,26 @@ class CurvedOptimizer {
   }
 
   // Max AMIPS of the touched tets mv.tets[k], k in `which`, were the move's
-  // nodes displaced by d; stops early (returning a value >= bound) once a
-  // tet reaches `bound`.
+  // nodes displaced by d, on the order-2P lattice (the trials); stops early
+  // (returning a value >= bound) once a tet reaches `bound`.
   double trial_amips(const Scratch& x, const std::vector<int>& which, const Vec3& d,
                      double bound = std::numeric_limits<double>::infinity()) const {
     double worst = 0;
     for (int k : which) {
-      worst = std::max(worst, table_.max_amips(x.frames[k], &x.directions[k * q_], d, bound));
+      worst = std::max(worst, table_.max_amips(x.frames[k], &x.directions[k * q_], d, bound, table_.num_lattice_points()));
       if (worst >= bound) break;
     }
     return worst;
   }
 
-  // Min scaled Jacobian of the same tets, were the nodes displaced by d;
-  // stops early (returning a value < floor) once a tet falls below `floor`.
+  // Min scaled Jacobian of the same tets on the same lattice; stops early
+  // (returning a value < floor) once a tet falls below `floor`.
   double trial_scaled_jacobian(const Scratch& x, const std::vector<int>& which, const Vec3& d,
                                double floor = -std::numeric_limits<double>::infinity()) const {
     double worst = std::numeric_limits<double>::infinity();
     for (int k : which) {
-      worst = std::min(worst, table_.min_scaled_jacobian(x.frames[k], &x.directions[k * q_], d, floor));
+      worst = std::min(worst, table_.min_scaled_jacobian(x.frames[k], &x.directions[k * q_], d, floor,
+                                                         table_.num_lattice_points()));
       if (worst < floor) break;
     }
     return worst;
@@ -420,29 +414,23 @@ class CurvedOptimizer {
     // Keeps d when the touched tets meet the constraints at every sample of
     // the convention (the trials above see its order-2P lattice only, so
     // what is reported is what is optimized) and are certified positive.
-    std::vector<highorder::TetQuality> quality_at(mv.tets.size());
     const auto accept_at = [&](const Vec3& d) {
-      place(mv, saved, d);
-      double a = 0, sj = std::numeric_limits<double>::infinity();
       for (std::size_t k = 0; k < mv.tets.size(); ++k) {
-        quality_at[k] = quality(mv.tets[k]);
-        a = std::max(a, quality_at[k].max_amips);
-        sj = std::min(sj, quality_at[k].min_scaled_jacobian);
+        const Vec3* c = &x.directions[k * q_];
+        if (!(table_.max_amips(x.frames[k], c, d, amips_bound) < amips_bound)) return false;
+        const double sj = table_.min_scaled_jacobian(x.frames[k], c, d, sj_floor);
+        if (goal == Goal::amips ? sj < sj_floor : !(sj > sj_floor)) return false;
       }
-      const bool fits = a < amips_bound && (goal == Goal::amips ? sj >= sj_floor : sj > sj_floor);
-      bool ok = fits;
+      place(mv, saved, d);
+      bool ok = true;
       for (int t : mv.tets) ok = ok && certified(t);
-      if (ok) {
-        for (std::size_t k = 0; k < mv.tets.size(); ++k) {
-          frames(mv.tets[k], x.frames[k]);
-          amips_[mv.tets[k]] = quality_at[k].max_amips;
-          sj_[mv.tets[k]] = quality_at[k].min_scaled_jacobian;
-        }
-        return true;
+      if (!ok) {
+        certificate_failed = true;
+        place(mv, saved, Vec3::Zero()); // saved + 0 * d: bit-exact restore
+        return false;
       }
-      certificate_failed = certificate_failed || fits;
-      place(mv, saved, Vec3::Zero()); // saved + 0 * d: bit-exact restore
-      return false;
+      for (std::size_t k = 0; k < mv.tets.size(); ++k) evaluate(mv.tets[k], x.frames[k]);
+      return true;
     };
     // Halving steps from a quarter of the longest edge down to the shortest
     // edge's quarter halved line_search_steps - 1 times.
