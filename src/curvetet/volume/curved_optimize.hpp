@@ -18,9 +18,10 @@
 // Jacobian. d is a descent direction of the sweep's goal over the touched
 // tets (central finite differences), tried with halving steps from a quarter
 // of the longest touched edge; for a vertex move where none of those steps
-// passes, the best of the 26 compass directions at the same steps. A move is
-// kept only if it improves the goal without hurting the other measure (see
-// CurvedOptimizeOptions) AND highorder::certify_tet says `positive` for
+// passes, the best of the 26 compass directions at the same steps. Steps are
+// tried on the order-2P lattice; a move is kept only if it improves the goal
+// without hurting the other measure (see CurvedOptimizeOptions) at every
+// sample of the convention AND highorder::certify_tet says `positive` for
 // every touched tet (undecided = rejected); otherwise the nodes are restored
 // bit for bit. Nodes of listed boundary triangles (the middle surface, and
 // with an exterior the box) and of every tet face used once never move, so
