@@ -52,12 +52,8 @@ nlohmann::json stats_json(const shell::ShellBuildStats& s) {
 nlohmann::json coarsen_json(const shell::CoarsenStats& c) {
   nlohmann::json passes = nlohmann::json::array();
   for (const auto& p : c.passes) {
-    nlohmann::json rejected = nlohmann::json::object();
     long long total = 0;
-    for (int k = 0; k < shell::kRejectionCount; ++k) {
-      rejected[std::string(shell::to_string(shell::Rejection(k)))] = p.rejected[k];
-      total += p.rejected[k];
-    }
+    for (long long n : p.rejected) total += n;
     passes.push_back({{"round", p.round},
                       {"operation", std::string(shell::to_string(p.op))},
                       {"faces_before", p.faces_before},
@@ -65,7 +61,7 @@ nlohmann::json coarsen_json(const shell::CoarsenStats& c) {
                       {"tried", p.tried},
                       {"accepted", p.accepted},
                       {"rejected", total},
-                      {"rejected_by_reason", rejected},
+                      {"rejected_by_reason", shell::rejections_json(p)},
                       {"batches", p.batches},
                       {"seconds", p.seconds},
                       {"check_seconds", p.check_seconds}});

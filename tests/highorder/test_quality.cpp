@@ -11,11 +11,14 @@
 
 #include "element_fixtures.hpp"
 
+#include <Eigen/Dense>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+#include <vector>
 
 using namespace curvetet::highorder;
 using namespace curvetet::highorder::testing;
@@ -155,4 +158,36 @@ TEST(Quadrature, WeightsAndExactness) {
     for (double w : tr.weights) a += w;
     EXPECT_NEAR(a, 0.5, 1e-14);
   }
+}
+
+// scaled_jacobian takes one square root (the corner frame with the largest
+// product when det > 0, the smallest positive one otherwise): it must equal
+// the min over the four corners of sqrt(2) det / sqrt(product), +-1 for a
+// degenerate frame, bit for bit, whatever the sign of det.
+TEST(Quality, ScaledJacobianIsTheMinOverTheFourCorners) {
+  const auto reference = [](const Eigen::Matrix3d& j) {
+    const double det = j.determinant();
+    const Eigen::Vector3d a = j.col(0), b = j.col(1), c = j.col(2);
+    const double aa = a.squaredNorm(), bb = b.squaredNorm(), cc = c.squaredNorm();
+    const double ab = (b - a).squaredNorm(), ac = (c - a).squaredNorm(), bc = (c - b).squaredNorm();
+    double best = std::numeric_limits<double>::infinity();
+    for (double f : {aa * bb * cc, aa * ab * ac, bb * ab * bc, cc * ac * bc})
+      best = std::min(best, f > 0 ? std::sqrt(2.0) * det / std::sqrt(f) : (det > 0 ? 1.0 : -1.0));
+    return best;
+  };
+  std::vector<Eigen::Matrix3d> cases;
+  for (int s = 0; s < 200; ++s) cases.push_back(Eigen::Matrix3d::Random() * (1 + s % 7));
+  Eigen::Matrix3d flat = Eigen::Matrix3d::Random();
+  flat.col(2) = flat.col(0) + flat.col(1); // det 0
+  cases.push_back(flat);
+  Eigen::Matrix3d repeated = Eigen::Matrix3d::Random();
+  repeated.col(1) = repeated.col(0); // a degenerate corner frame (|b - a| = 0)
+  cases.push_back(repeated);
+  cases.push_back(Eigen::Matrix3d::Zero());
+  int negative = 0;
+  for (const auto& j : cases) {
+    EXPECT_EQ(scaled_jacobian(j), reference(j)) << j;
+    negative += j.determinant() < 0;
+  }
+  EXPECT_GT(negative, 20); // both signs exercised
 }

@@ -245,3 +245,17 @@ TEST(CoarsenOps, SmoothRejectedByDistance) {
   expect_rejected_by_tiny_epsilon(
       [](const ShellEditor& e, int v) { return smooth_candidates(e, v, SmoothParams{10.0, 1e-3}); });
 }
+
+// The reports' rejection counts: every reason named, summed over passes.
+TEST(CoarsenOps, RejectionsJsonNamesEveryReasonAndSumsPasses) {
+  PassStats a, b;
+  a.rejected[static_cast<int>(Rejection::distance)] = 3;
+  b.rejected[static_cast<int>(Rejection::distance)] = 4;
+  b.rejected[static_cast<int>(Rejection::surface_distance)] = 5;
+  const auto one = rejections_json(a), both = rejections_json(std::vector<PassStats>{a, b});
+  EXPECT_EQ(static_cast<int>(both.size()), kRejectionCount);
+  EXPECT_EQ(one["distance"].get<long long>(), 3);
+  EXPECT_EQ(both["distance"].get<long long>(), 7);
+  EXPECT_EQ(both["surface_distance"].get<long long>(), 5);
+  EXPECT_EQ(both["quality"].get<long long>(), 0);
+}

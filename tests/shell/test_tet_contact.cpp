@@ -82,3 +82,18 @@ TEST(TetContact, AllowedCornersAreTheOtherPillarsMiddleEnds) {
   const auto top = section_allowed_corners(u, false);
   EXPECT_EQ(top, (std::array<bool, 4>{true, false, true, false}));
 }
+
+// The quick separation (boxes, then the tet's face planes) must keep the
+// test closed: a triangle beside the slanted face with overlapping boxes
+// does not meet the tet, one lying in that face's plane across it does.
+TEST(TetContact, FacePlaneSeparationKeepsTheTestClosed) {
+  Case c;
+  const Vec3* t[4] = {&c.tet[0], &c.tet[1], &c.tet[2], &c.tet[3]};
+  const Vec3* f[3] = {&c.tri[0], &c.tri[1], &c.tri[2]};
+  c.tri = {Vec3(0.6, 0.6, 0.1), Vec3(0.1, 0.6, 0.6), Vec3(0.6, 0.1, 0.6)}; // x + y + z = 1.3 > 1
+  EXPECT_FALSE(triangle_meets_tet(f, t));
+  c.tri = {Vec3(0.5, 0.5, 0), Vec3(0, 0.5, 0.5), Vec3(0.5, 0, 0.5)}; // on x + y + z = 1, inside the face
+  EXPECT_TRUE(triangle_meets_tet(f, t));
+  c.tri = {Vec3(1, 0, 0), Vec3(2, 1, 0), Vec3(2, 0, 1)}; // touches one corner only
+  EXPECT_TRUE(triangle_meets_tet(f, t));
+}

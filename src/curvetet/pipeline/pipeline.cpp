@@ -13,7 +13,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include <array>
 #include <chrono>
 #include <functional>
 
@@ -206,11 +205,7 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
       report["coarsen"]["curved_middle"] = curved->stats().json();
     // Why candidates were turned down, summed over every pass (what limits
     // the coarsening: distance, surface distance, quality, ...).
-    std::array<long long, shell::kRejectionCount> rejected{};
-    for (const auto& pass : c.passes)
-      for (int k = 0; k < shell::kRejectionCount; ++k) rejected[k] += pass.rejected[k];
-    for (int k = 0; k < shell::kRejectionCount; ++k)
-      report["coarsen"]["rejected"][std::string(shell::to_string(static_cast<shell::Rejection>(k)))] = rejected[k];
+    report["coarsen"]["rejected"] = shell::rejections_json(c.passes);
     logger().info("coarsened the shell from {} to {} faces", c.faces_before, c.faces_after);
     if (featured) {
       const auto fc = shell::check_features(r.shell);

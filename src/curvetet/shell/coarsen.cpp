@@ -386,4 +386,16 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   return out;
 }
 
+nlohmann::json rejections_json(const std::vector<PassStats>& passes) {
+  nlohmann::json out = nlohmann::json::object();
+  for (int k = 0; k < kRejectionCount; ++k) {
+    long long n = 0;
+    for (const auto& p : passes) n += p.rejected[k];
+    out[std::string(to_string(static_cast<Rejection>(k)))] = n;
+  }
+  return out;
+}
+
+nlohmann::json rejections_json(const PassStats& pass) { return rejections_json(std::vector<PassStats>{pass}); }
+
 } // namespace curvetet::shell

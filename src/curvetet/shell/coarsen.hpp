@@ -25,6 +25,8 @@
 #include "curvetet/shell/shell.hpp"
 #include "curvetet/shell/star.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <array>
 #include <limits>
 #include <string>
@@ -63,6 +65,11 @@ struct PassStats {
   double seconds = 0;
   double check_seconds = 0; // of which in the parallel check phase (the rest is serial)
 };
+
+// Rejected candidates per reason, keyed by to_string(Rejection) (the
+// reports' form): of one pass, or summed over a whole coarsening.
+nlohmann::json rejections_json(const PassStats& pass);
+nlohmann::json rejections_json(const std::vector<PassStats>& passes);
 
 struct CoarsenStats {
   int faces_before = 0, faces_after = 0;

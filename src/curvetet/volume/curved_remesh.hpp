@@ -16,7 +16,8 @@
 //     collapses onto its best neighbour if the new tets stay under
 //     collapse_amips (or under the old star's max AMIPS, when higher);
 //  3. the quality pass again, for the tets above collapse_amips;
-//  4. smoothing (optimize_curved, on the convention's order-2P lattice).
+//  4. smoothing (optimize_curved: steps tried on the convention's order-2P
+//     lattice, accepted on every sample).
 // No operation takes a tet below min(min_scaled_jacobian, the old star's
 // min scaled Jacobian). Rounds stop when no tet above collapse_amips is left,
 // or one runs fewer than min_operations (x tets) operations or moves neither
