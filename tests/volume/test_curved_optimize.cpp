@@ -5,6 +5,7 @@
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/volume/assemble.hpp"
 #include "curvetet/volume/curved_optimize.hpp"
+#include "curvetet/volume/curved_remesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -162,5 +163,27 @@ TEST(CurvedOptimize, SweepCapVisitsOnlyTheWorstTets) {
   EXPECT_LT(one.vertex_moves + one.node_moves, full.vertex_moves + full.node_moves);
   EXPECT_LT(one.max_amips_after, one.max_amips_before);
   const auto v = check::verify_tet_mesh(capped);
+  EXPECT_TRUE(v.ok()) << v.text();
+}
+
+// The remesh previews candidates in parallel on replicas of its editor:
+// the same operations, hence the same mesh, for any thread count.
+TEST(CurvedRemesh, ThreadCountDoesNotChangeTheResult) {
+  auto a = bad_mesh(4), b = a;
+  volume::CurvedRemeshOptions o;
+  o.target_amips = 3.5; // visit nearly every tet
+  volume::CurvedRemeshStats sa, sb;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    sa = volume::remesh_curved(a, o);
+  }
+  {
+    tbb::global_control four(tbb::global_control::max_allowed_parallelism, 4);
+    sb = volume::remesh_curved(b, o);
+  }
+  EXPECT_GT(sa.collapses + sa.flips_2_3 + sa.flips_3_2 + sa.flips_4_4 + sa.edge_removals + sa.splits, 0);
+  EXPECT_EQ(a.tets, b.tets);
+  EXPECT_EQ(a.nodes, b.nodes);
+  const auto v = check::verify_tet_mesh(b);
   EXPECT_TRUE(v.ok()) << v.text();
 }

@@ -8,7 +8,9 @@
 #include "curvetet/highorder/quality.hpp"
 #include "curvetet/volume/frame_cache.hpp"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include <algorithm>
 #include <array>
@@ -184,10 +186,15 @@ class CurvedOptimizer {
           }
       tbb::parallel_for(std::size_t(0), missing.size(), [&](std::size_t k) { frames(missing[k], cache_.slot(missing[k])); });
 
-      tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t k) {
-        thread_local Scratch scratch;
-        batch[k].outcome = try_move(batch[k].mv, goal, scratch);
-      });
+      // One move per task: a corner's compass search costs a hundred node
+      // moves, so chunks of moves would leave a thread idle at the end.
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, batch.size(), 1),
+          [&](const tbb::blocked_range<std::size_t>& r) {
+            thread_local Scratch scratch;
+            for (std::size_t k = r.begin(); k < r.end(); ++k) batch[k].outcome = try_move(batch[k].mv, goal, scratch);
+          },
+          tbb::simple_partitioner());
       for (const Job& j : batch) {
         switch (j.outcome) {
           case Outcome::accepted:
@@ -227,7 +234,8 @@ class CurvedOptimizer {
   }
 
   // Refreshes tet t's frames (into k) and amips_[t], sj_[t] (every sample
-  // of the convention, as reported).
+  // of the convention, as reported). From the nodes, so that the frames do
+  // not depend on whether the cache kept them.
   void evaluate(int t, Eigen::Matrix3d* k) {
     frames(t, k);
     amips_[t] = table_.max_amips(k, nullptr, Vec3::Zero());
@@ -372,9 +380,15 @@ class CurvedOptimizer {
     if (!(h > 0) || !std::isfinite(amips0)) return Outcome::rejected_quality;
     prepare(mv, x);
 
-    // The touched tets that decide the direction: those near the worst.
+    // The touched tets, worst for the goal first (the trials stop at the
+    // first tet past their bound), and those that decide the direction:
+    // those near the worst.
     std::vector<int> all(mv.tets.size()), active;
     std::iota(all.begin(), all.end(), 0);
+    std::stable_sort(all.begin(), all.end(), [&](int a, int b) {
+      const int s = mv.tets[a], t = mv.tets[b];
+      return goal == Goal::amips ? amips_[s] > amips_[t] : sj_[s] < sj_[t];
+    });
     for (int k : all) {
       const int t = mv.tets[k];
       if (goal == Goal::amips ? amips_[t] >= 0.5 * amips0 : sj_[t] < o_.min_scaled_jacobian) active.push_back(k);
@@ -400,12 +414,15 @@ class CurvedOptimizer {
     const double amips_bound = goal == Goal::amips ? amips0 * (1 - 1e-6) : sweep_max_amips_;
     const double sj_floor = goal == Goal::amips ? std::min(sj0, o_.min_scaled_jacobian) : sj0 * (1 + 1e-6);
     // The goal's value at d under the constraints above (lower is better),
-    // or +inf where a constraint fails.
-    const auto constrained = [&](const Vec3& d) {
-      const double a = trial_amips(x, all, d, amips_bound);
-      if (!(a < amips_bound)) return std::numeric_limits<double>::infinity();
-      const double sj = trial_scaled_jacobian(x, all, d, sj_floor);
-      if (goal == Goal::amips ? sj < sj_floor : !(sj > sj_floor)) return std::numeric_limits<double>::infinity();
+    // or +inf where a constraint fails or the value is not below `cutoff`.
+    const double inf = std::numeric_limits<double>::infinity();
+    const auto constrained = [&](const Vec3& d, double cutoff = std::numeric_limits<double>::infinity()) {
+      const double a_bound = goal == Goal::amips ? std::min(amips_bound, cutoff) : amips_bound;
+      const double a = trial_amips(x, all, d, a_bound);
+      if (!(a < a_bound)) return inf;
+      const double floor = goal == Goal::amips ? sj_floor : std::max(sj_floor, -cutoff);
+      const double sj = trial_scaled_jacobian(x, all, d, floor);
+      if (goal == Goal::amips ? sj < floor : !(sj > floor)) return inf;
       return goal == Goal::amips ? a : -sj;
     };
     std::vector<Vec3> saved;
@@ -415,7 +432,7 @@ class CurvedOptimizer {
     // the convention (the trials above see its order-2P lattice only, so
     // what is reported is what is optimized) and are certified positive.
     const auto accept_at = [&](const Vec3& d) {
-      for (std::size_t k = 0; k < mv.tets.size(); ++k) {
+      for (int k : all) {
         const Vec3* c = &x.directions[k * q_];
         if (!(table_.max_amips(x.frames[k], c, d, amips_bound) < amips_bound)) return false;
         const double sj = table_.min_scaled_jacobian(x.frames[k], c, d, sj_floor);
@@ -444,17 +461,20 @@ class CurvedOptimizer {
     // moves skip it: they are many and rarely the limit.
     const auto rejected = [&] { return certificate_failed ? Outcome::rejected_certificate : Outcome::rejected_quality; };
     if (!mv.corner) return rejected();
-    std::vector<std::pair<double, Vec3>> found;
+    // The kCompassTries best steps, best first (a step no better than the
+    // last kept is cut short by the trials' bound).
+    std::vector<std::pair<double, Vec3>> best;
     for (double step = 0.25 * h_max; step >= smallest; step *= 0.5)
       for (const Vec3& u : compass_directions()) {
-        const double value = constrained(step * u);
-        if (std::isfinite(value)) found.emplace_back(value, step * u);
+        const double value = constrained(step * u, best.size() < kCompassTries ? inf : best.back().first);
+        if (!std::isfinite(value)) continue;
+        const auto at = std::upper_bound(best.begin(), best.end(), value,
+                                         [](double v, const auto& b) { return v < b.first; });
+        best.insert(at, {value, step * u});
+        if (best.size() > kCompassTries) best.pop_back();
       }
-    const auto keep = std::min<std::size_t>(found.size(), kCompassTries);
-    std::partial_sort(found.begin(), found.begin() + keep, found.end(),
-                      [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (std::size_t k = 0; k < keep; ++k)
-      if (accept_at(found[k].second)) return Outcome::accepted;
+    for (const auto& [value, d] : best)
+      if (accept_at(d)) return Outcome::accepted;
     return rejected();
   }
 

@@ -4,6 +4,11 @@
 #include "curvetet/volume/edit/operations.hpp"
 #include "curvetet/volume/edit/tet_editor.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -36,26 +41,76 @@ constexpr int kPlacementLevels = 5;
 constexpr std::size_t kCollapseTargets = 6;
 using Vec3 = Eigen::Vector3d;
 
+// Stages p in a transaction of editor e: its tets killed, its new vertex
+// and tets added (returned).
+std::vector<int> stage(TetEditor& e, const Proposal& p, int* new_vertex = nullptr) {
+  e.begin();
+  for (int t : p.kill) e.kill(t);
+  const int v = p.adds_vertex ? e.add_vertex(p.new_vertex) : edit::kNewVertex;
+  if (new_vertex) *new_vertex = v;
+  std::vector<int> added;
+  for (const auto& [c, tag] : p.add) added.push_back(e.add(with_vertex(c, v), tag));
+  e.relax_new_nodes();
+  return added;
+}
+
+// Max AMIPS of `tets`, or +inf once one reaches bound.
+double star_max(const TetEditor& e, const std::vector<int>& tets, double bound) {
+  double worst = 0;
+  for (int t : tets) {
+    if (!e.amips_below(t, bound)) return std::numeric_limits<double>::infinity();
+    worst = std::max(worst, e.shape(t).max_amips);
+  }
+  return worst;
+}
+
+// Pattern search over the 6 axis steps, halving from a quarter of the
+// star's shortest edge; returns the best max AMIPS, *at its position.
+double place_new_vertex(TetEditor& e, int v, const std::vector<int>& tets, Vec3& at, double worst, double bound) {
+  double h = std::numeric_limits<double>::infinity();
+  for (int w : e.neighbours(v)) h = std::min(h, (e.position(w) - e.position(v)).norm());
+  h *= 0.25;
+  for (int level = 0; level < kPlacementLevels; ++level, h *= 0.5) {
+    bool improved = true;
+    while (improved) {
+      improved = false;
+      for (int k = 0; k < 6; ++k) {
+        const Vec3 d = (k % 2 ? -h : h) * Vec3::Unit(k / 2);
+        e.move_new_vertex(v, d);
+        const double m = star_max(e, tets, std::min(bound, worst));
+        if (m < worst) {
+          worst = m;
+          improved = true;
+          break;
+        }
+        e.move_new_vertex(v, -d);
+      }
+    }
+  }
+  at = e.position(v);
+  return worst;
+}
+
+// Max AMIPS the new tets of p would have in editor e, or +inf once one
+// reaches bound. A new vertex is first placed by a pattern search on that
+// max (its place is kept in p). e is left as it was.
+double preview(TetEditor& e, Proposal& p, double bound) {
+  int v = edit::kNewVertex;
+  const std::vector<int> added = stage(e, p, &v);
+  double worst = star_max(e, added, bound);
+  if (p.adds_vertex) worst = place_new_vertex(e, v, added, p.new_vertex, worst, bound);
+  e.rollback();
+  return worst;
+}
+
 class Remesher {
  public:
-  Remesher(TetEditor& e, const CurvedRemeshOptions& o, CurvedRemeshStats& s) : e_(e), o_(o), s_(s) {}
-
-  // Opens a transaction holding p: its tets killed, its new vertex and tets
-  // added (returned).
-  std::vector<int> stage(const Proposal& p, int* new_vertex = nullptr) {
-    e_.begin();
-    for (int t : p.kill) e_.kill(t);
-    const int v = p.adds_vertex ? e_.add_vertex(p.new_vertex) : edit::kNewVertex;
-    if (new_vertex) *new_vertex = v;
-    std::vector<int> added;
-    for (const auto& [c, tag] : p.add) added.push_back(e_.add(with_vertex(c, v), tag));
-    e_.relax_new_nodes();
-    return added;
-  }
+  Remesher(TetEditor& e, const CurvedRemeshOptions& o, CurvedRemeshStats& s)
+      : e_(e), o_(o), s_(s), replicas_([this] { return Replica{e_, log_.size()}; }) {}
 
   // Runs p as a transaction; keeps it when every new tet passes the checks.
   bool apply(const Proposal& p, const StarLimits& limits) {
-    stage(p);
+    stage(e_, p);
     if (const auto why = edit::check_new_tets(e_, limits)) {
       e_.rollback();
       ++s_.rejected[static_cast<int>(*why)];
@@ -67,6 +122,7 @@ class Remesher {
         changed_at_[v] = ++commits_;
       }
     e_.commit();
+    log_.push_back(p);
     return true;
   }
 
@@ -85,54 +141,6 @@ class Remesher {
         if (changed_after(w)) return true;
     }
     return false;
-  }
-
-  // Max AMIPS the new tets of p would have, or +inf once one reaches bound.
-  // A new vertex is first placed by a pattern search on that max (its
-  // place is kept in p).
-  double preview(Proposal& p, double bound) {
-    int v = edit::kNewVertex;
-    const std::vector<int> added = stage(p, &v);
-    double worst = star_max(added, bound);
-    if (p.adds_vertex) worst = place_new_vertex(v, added, p.new_vertex, worst, bound);
-    e_.rollback();
-    return worst;
-  }
-
-  double star_max(const std::vector<int>& tets, double bound) const {
-    double worst = 0;
-    for (int t : tets) {
-      if (!e_.amips_below(t, bound)) return std::numeric_limits<double>::infinity();
-      worst = std::max(worst, e_.shape(t).max_amips);
-    }
-    return worst;
-  }
-
-  // Pattern search over the 6 axis steps, halving from a quarter of the
-  // star's shortest edge; returns the best max AMIPS, *at its position.
-  double place_new_vertex(int v, const std::vector<int>& tets, Vec3& at, double worst, double bound) {
-    double h = std::numeric_limits<double>::infinity();
-    for (int w : e_.neighbours(v)) h = std::min(h, (e_.position(w) - e_.position(v)).norm());
-    h *= 0.25;
-    for (int level = 0; level < kPlacementLevels; ++level, h *= 0.5) {
-      bool improved = true;
-      while (improved) {
-        improved = false;
-        for (int k = 0; k < 6; ++k) {
-          const Vec3 d = (k % 2 ? -h : h) * Vec3::Unit(k / 2);
-          e_.move_new_vertex(v, d);
-          const double m = star_max(tets, std::min(bound, worst));
-          if (m < worst) {
-            worst = m;
-            improved = true;
-            break;
-          }
-          e_.move_new_vertex(v, -d);
-        }
-      }
-    }
-    at = e_.position(v);
-    return worst;
   }
 
   StarLimits limits_for(const Proposal& p, double amips_cap) const {
@@ -155,11 +163,21 @@ class Remesher {
     double new_max = 0;
   };
 
-  // Previews every candidate, then runs them best first (lowest new max
-  // AMIPS); keeps the first whose new tets pass the checks under the limits
-  // the caller sets for it (cap = the AMIPS a new tet may reach anyway).
+  // Previews every candidate (in parallel, each on a replica of the
+  // editor), then runs them best first (lowest new max AMIPS); keeps the
+  // first whose new tets pass the checks under the limits the caller sets
+  // for it (cap = the AMIPS a new tet may reach anyway).
   bool run_best(std::vector<Candidate>& candidates, double amips_cap) {
-    for (auto& k : candidates) k.new_max = preview(k.p, limits_for(k.p, amips_cap).max_amips);
+    std::vector<double> bounds;
+    for (const auto& k : candidates) bounds.push_back(limits_for(k.p, amips_cap).max_amips);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, candidates.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          TetEditor& replica = up_to_date_replica();
+          for (std::size_t k = r.begin(); k < r.end(); ++k)
+            candidates[k].new_max = preview(replica, candidates[k].p, bounds[k]);
+        },
+        tbb::simple_partitioner());
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const Candidate& a, const Candidate& b) { return a.new_max < b.new_max; });
     for (const Candidate& k : candidates) {
@@ -263,9 +281,29 @@ class Remesher {
   }
 
  private:
+  // A copy of the editor for one thread's previews, with the number of
+  // committed proposals it holds (it replays the rest before use, so it
+  // matches e_ whatever thread it serves: the previews do not depend on the
+  // thread count).
+  struct Replica {
+    TetEditor editor;
+    std::size_t replayed = 0;
+  };
+
+  TetEditor& up_to_date_replica() {
+    Replica& r = replicas_.local();
+    for (; r.replayed < log_.size(); ++r.replayed) {
+      stage(r.editor, log_[r.replayed]);
+      r.editor.commit();
+    }
+    return r.editor;
+  }
+
   TetEditor& e_;
   const CurvedRemeshOptions& o_;
   CurvedRemeshStats& s_;
+  std::vector<Proposal> log_; // committed proposals, in order
+  tbb::enumerable_thread_specific<Replica> replicas_;
   long commits_ = 0;
   std::vector<long> changed_at_;              // per vertex: the commit that last changed its star
   std::unordered_map<int, long> failed_at_;   // per tet: commits_ when its visit last failed
@@ -335,9 +373,9 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), now.max_amips,
                    now.min_scaled_jacobian);
     // Another round pays only while tets above collapse_amips are left and
-    // this one moved an extreme.
-    const bool gained = now.max_amips < (1 - o.smoothing.min_gain) * last.max_amips ||
-                        now.min_scaled_jacobian > (1 + o.smoothing.min_gain) * last.min_scaled_jacobian;
+    // this one lowered the max AMIPS (a round that only raised the min
+    // scaled Jacobian rarely lowers the max in the next).
+    const bool gained = now.max_amips < (1 - o.smoothing.min_gain) * last.max_amips;
     last = now;
     if (changed < o.min_operations * m.num_tets() || !gained || now.max_amips <= o.collapse_amips) break;
   }

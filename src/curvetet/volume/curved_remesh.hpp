@@ -20,9 +20,11 @@
 //     lattice, accepted on every sample).
 // No operation takes a tet below min(min_scaled_jacobian, the old star's
 // min scaled Jacobian). Rounds stop when no tet above collapse_amips is left,
-// or one runs fewer than min_operations (x tets) operations or moves neither
-// extreme by smoothing.min_gain. Sequential, so
-// the result does not depend on the thread count.
+// or one runs fewer than min_operations (x tets) operations or lowers the
+// max AMIPS by less than smoothing.min_gain. Operations run one at a time;
+// the previews of one choice's candidates run in parallel, each on a replica
+// of the editor that has replayed every committed operation, so the result
+// does not depend on the thread count.
 // AMIPS in the validator's convention (highorder/quality.hpp).
 #include "curvetet/mesh/tet_mesh.hpp"
 #include "curvetet/volume/curved_optimize.hpp"
