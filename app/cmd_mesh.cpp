@@ -58,6 +58,10 @@ std::function<int()> add_mesh_options(CLI::App& root) {
                   "Shell pillar length to grow to on each side, relative to the bbox diagonal")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  root.add_option("--thickness-ratio", o->pipeline.thickness_ratio,
+                  "For thin parts: keep each boundary triangle's longest edge within K x the solid's thickness under "
+                  "it (3-4: no flat tets across thin walls and tubes, more tets; default: no such rule)")
+      ->check(CLI::PositiveNumber);
   root.add_flag("--slab-layer", o->pipeline.slab_layer,
                 "Fill inside the shell's bottom surface and keep the bottom slabs (the paper's assembly; by default "
                 "the interior is filled straight on the middle surface whenever all its tets certify)");

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <map>
 
 using namespace curvetet;
@@ -36,10 +37,11 @@ Quality quality(const mesh::TetMesh& m) {
   return q;
 }
 
-Quality main_job(const mesh::SurfaceMesh& input) {
+Quality main_job(const mesh::SurfaceMesh& input, double thickness_ratio = std::numeric_limits<double>::infinity()) {
   pipeline::PipelineOptions o;
   o.order = 4;
   o.epsilon = 0.01;
+  o.thickness_ratio = thickness_ratio;
   Report report;
   const auto r = pipeline::run_pipeline(input, o, report);
   EXPECT_TRUE(r.verification.ok());
@@ -128,4 +130,16 @@ TEST(UsableElements, Thingi10k85770CloseToTheLinearFill) {
       mesh::to_surface_mesh(io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/thingi10k_85770.off"));
   const auto ours = main_job(input), fill = linear_fill(input);
   EXPECT_LE(ours.max_amips, 1.2 * fill.max_amips) << ours.tets << " tets vs " << fill.tets;
+}
+
+// A box 10 x 1 x 1 (10 Kuhn cubes): coarsened freely, its sides become 5 x 1
+// triangles, on which no tet inside the box has AMIPS below 9.8 (the linear
+// fill of the dense surface: 9.19). With the thickness rule (--thickness-ratio)
+// the sides keep triangles short enough for the 1.2x bound.
+TEST(UsableElements, LongThinBoxCloseToTheLinearFillWithTheThicknessRule) {
+  const auto input = kuhn_box(10, 1.0);
+  const auto fill = linear_fill(input);
+  const auto ours = main_job(input, 4.0);
+  EXPECT_LE(ours.max_amips, 1.2 * fill.max_amips) << ours.tets << " tets vs " << fill.tets;
+  EXPECT_LT(ours.tets, fill.tets);
 }

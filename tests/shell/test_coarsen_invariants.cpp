@@ -95,6 +95,25 @@ TEST(CoarsenInvariants, SlabQualityRejected) {
   EXPECT_NE(run(s, flatten), Rejection::slab_quality);
 }
 
+TEST(CoarsenInvariants, ThicknessRejected) {
+  // The solid is 0.5 thick under every vertex; vertex 1 pulled out to
+  // (3, 0) makes an edge of 3.2 = 6.3 x 0.5, the old worst was 2.8.
+  Shell s = flat_prism();
+  const Vec3 d(2, 0, 0);
+  const auto stretch = move_vertex(s, 1, s.bottom[1] + d, s.middle[1] + d, s.top[1] + d);
+  ShellEditor editor(s);
+  const LinearMiddle linear;
+  const std::vector<double> thickness(3, 0.5);
+  StarContext ctx{editor, linear, 10, 100};
+  ctx.thickness = &thickness;
+  ctx.thickness_ratio = 4;
+  auto c = stretch;
+  EXPECT_EQ(check_candidate(default_star_invariants(), ctx, c), Rejection::thickness);
+  ctx.thickness_ratio = 7; // the stretched triangle fits
+  c = stretch;
+  EXPECT_NE(check_candidate(default_star_invariants(), ctx, c), Rejection::thickness);
+}
+
 TEST(CoarsenInvariants, PositivityRejected) {
   Shell s = flat_prism();
   // The middle of vertex 0 above its top: the bottom slab inverts... and the top one.

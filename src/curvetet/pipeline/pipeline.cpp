@@ -169,6 +169,7 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
   const double diagonal = mesh::bbox_diagonal(input.vertices);
   const double epsilon_rel = o.epsilon_abs ? *o.epsilon_abs / diagonal : o.epsilon;
   report["options"] = {{"order", o.order}, {"epsilon_relative", epsilon_rel}, {"bbox_diagonal", diagonal}};
+  if (std::isfinite(o.thickness_ratio)) report["options"]["thickness_ratio"] = o.thickness_ratio;
 
   {
     StageTimer t(&report, "shell");
@@ -189,6 +190,7 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
     co.target_pillar = o.shell.extrusion.target_thickness;
     co.quality_bound = kMiddleQualityBound;
     co.slab_quality_bound = kSlabQualityBound;
+    co.thickness_ratio = o.thickness_ratio;
     co.singular_dot = o.shell.extrusion.singular_dot;
     co.debug_invariants = o.shell.debug_invariants;
     // Middle of degree P-1 (paper §4.1); P = 2 keeps it flat.

@@ -24,6 +24,7 @@
 #include "curvetet/shell/build.hpp"
 #include "curvetet/volume/curved_remesh.hpp"
 
+#include <limits>
 #include <optional>
 
 namespace curvetet::pipeline {
@@ -44,6 +45,10 @@ struct PipelineOptions {
   FillRegion fill = FillRegion::interior;
   bool slab_layer = false;             // interior: always the paper's assembly (fill inside B + bottom slabs)
   double box_margin = 0.1;             // --fill all: the box grows the top's bbox by this x diagonal per side
+  // Coarsening: a new boundary triangle's longest edge may reach this x the
+  // solid's thickness under it (shell/local_thickness.hpp; 3-4 keep thin
+  // walls and tubes from flat tets, at the price of more tets); inf: no rule.
+  double thickness_ratio = std::numeric_limits<double>::infinity();
   bool optimize = true;                // curved optimization after the assembly
   volume::CurvedRemeshOptions optimization;
   // Points of the input (face, barycentric; features file "points") where

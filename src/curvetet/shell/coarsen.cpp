@@ -4,6 +4,7 @@
 #include "curvetet/core/log.hpp"
 #include "curvetet/shell/curved_middle.hpp"
 #include "curvetet/shell/invariants.hpp"
+#include "curvetet/shell/local_thickness.hpp"
 #include "curvetet/shell/operations.hpp"
 #include "curvetet/shell/shell_editor.hpp"
 #include "curvetet/shell/star_invariants.hpp"
@@ -344,7 +345,17 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   if (fit->degree() == 1 && !s.middle_nodes.empty())
     throw Error(ExitCode::internal, "coarsen_shell: a curved shell needs a curved middle fit");
   ShellEditor editor(s);
-  const StarContext ctx{editor, *fit, out.epsilon, o.quality_bound, o.slab_quality_bound};
+  // The thickness under each vertex, refreshed every round (vertices move
+  // a little, splits add some); rays skip the input within 2 epsilon of the
+  // middle surface.
+  std::unique_ptr<ThicknessProbe> probe;
+  std::vector<double> thickness;
+  if (std::isfinite(o.thickness_ratio)) probe = std::make_unique<ThicknessProbe>(s.input);
+  StarContext ctx{editor, *fit, out.epsilon, o.quality_bound, o.slab_quality_bound};
+  if (probe) {
+    ctx.thickness = &thickness;
+    ctx.thickness_ratio = o.thickness_ratio;
+  }
   const auto invariants = default_star_invariants();
   const SmoothParams pillar_params{o.target_pillar * diag, o.singular_dot};
   const CollapseOp collapse(pillar_params);
@@ -361,6 +372,7 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
       split = std::make_unique<SplitOp>(o.split_factor * mean_edge_length(s));
       ops.push_back(split.get());
     }
+    if (probe) thickness = probe->at_vertices(s, 2 * out.epsilon);
     const int before = s.num_prisms();
     // The last round: collapses stalled (none accepted, or they removed less
     // than min_round_gain of the faces). It skips the split, which would

@@ -42,6 +42,10 @@ struct CoarsenOptions {
   // lower slabs may reach max(old, this): in thin regions the shell is thin,
   // and long faces there make flat output tets.
   double slab_quality_bound = std::numeric_limits<double>::infinity();
+  // New middle triangles' longest edge over the solid's thickness under
+  // their thinnest corner (local_thickness.hpp) may reach max(old, this):
+  // a face much longer than the solid is thick leaves only flat tets.
+  double thickness_ratio = std::numeric_limits<double>::infinity();
   double split_factor = 3.0;   // split edges longer than this x mean edge length (0: never)
   double target_pillar = 0.02; // zoom target, relative to the diagonal
   double singular_dot = 1e-3;  // as ExtrusionOptions::singular_dot

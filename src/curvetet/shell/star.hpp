@@ -33,6 +33,7 @@ enum class Rejection : std::uint8_t {
   singular_adjacent, // would make two singular vertices adjacent
   quality,           // middle triangles worse than allowed (ranking rule)
   slab_quality,      // lower slab tets flatter than allowed (ranking rule)
+  thickness,         // middle edges too long for the solid's thickness (ranking rule)
   prism_positivity,  // invariant 1 on the new prisms
   coverage,          // a tracked input triangle leaves the new prisms
   section,           // invariant 2 on the new prisms

@@ -36,6 +36,7 @@ std::string_view to_string(Rejection r) {
     case Rejection::singular_adjacent: return "singular_adjacent";
     case Rejection::quality: return "quality";
     case Rejection::slab_quality: return "slab_quality";
+    case Rejection::thickness: return "thickness";
     case Rejection::prism_positivity: return "prism_positivity";
     case Rejection::coverage: return "coverage";
     case Rejection::section: return "section";
@@ -195,6 +196,38 @@ class SlabQuality final : public StarInvariant {
     const double bound = std::max(old_max, ctx.slab_quality_bound);
     for (const auto& f : c.faces)
       if (!(slab(f, [&](int v) { return e.bottom(c, v); }, [&](int v) { return e.middle(c, v); }) <= bound)) return false;
+    return true;
+  }
+};
+
+// Longest edge of triangle t over the solid's thickness at its thinnest
+// corner (0 where no corner's thickness is known).
+template <class Middle>
+double edge_over_thickness(const Tri& t, Middle middle, const std::vector<double>& thickness) {
+  const auto at = [&](int v) {
+    return v >= 0 && v < static_cast<int>(thickness.size()) ? thickness[v] : std::numeric_limits<double>::infinity();
+  };
+  const double thinnest = std::min({at(t[0]), at(t[1]), at(t[2])});
+  if (!std::isfinite(thinnest)) return 0;
+  double longest = 0;
+  for (int k = 0; k < 3; ++k) longest = std::max(longest, (middle(t[k]) - middle(t[(k + 1) % 3])).norm());
+  return longest / thinnest;
+}
+
+class Thickness final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::thickness; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    if (!ctx.thickness || !std::isfinite(ctx.thickness_ratio)) return true;
+    const auto& e = ctx.editor;
+    const auto& s = e.shell();
+    double old_max = 0;
+    for (int f : c.removed)
+      old_max = std::max(old_max, edge_over_thickness(s.faces[f], [&](int v) { return s.middle[v]; }, *ctx.thickness));
+    const double bound = std::max(old_max, ctx.thickness_ratio);
+    for (const auto& t : c.faces)
+      if (!(edge_over_thickness(t, [&](int v) -> const Vec3& { return e.middle(c, v); }, *ctx.thickness) <= bound))
+        return false;
     return true;
   }
 };
@@ -379,6 +412,7 @@ InvariantList default_star_invariants() {
   l.push_back(std::make_unique<SingularIsolation>());
   l.push_back(std::make_unique<MiddleQuality>());
   l.push_back(std::make_unique<SlabQuality>());
+  l.push_back(std::make_unique<Thickness>());
   l.push_back(std::make_unique<PrismPositivity>());
   l.push_back(make_straightening_invariant());
   l.push_back(std::make_unique<Coverage>());

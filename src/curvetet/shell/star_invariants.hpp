@@ -10,6 +10,9 @@
 //  SlabQuality        (ranking rule) max AMIPS of the 12 tets of the new
 //                     lower slabs (middle over bottom: the output's slab
 //                     tets come from them) <= max(old max, bound)
+//  Thickness          (ranking rule) max over the new middle triangles of
+//                     longest edge / solid thickness at the thinnest corner
+//                     (local_thickness.hpp) <= max(old max, bound)
 //  PrismPositivity    invariant 1 on the new prisms (fills c.geoms)
 //  Straightening      feature chains straightened onto the new coarse edges
 //                     keep M̄ a section around the star (straighten.hpp;
@@ -54,6 +57,8 @@ struct StarContext {
   double epsilon;        // absolute distance bound
   double quality_bound;  // MIPS bound of the ranking rule
   double slab_quality_bound = std::numeric_limits<double>::infinity(); // AMIPS bound of the slab rule
+  const std::vector<double>* thickness = nullptr; // per shell vertex (local_thickness.hpp); null: no rule
+  double thickness_ratio = std::numeric_limits<double>::infinity(); // edge / thickness bound of that rule
 };
 
 class StarInvariant {
