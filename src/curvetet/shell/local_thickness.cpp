@@ -6,8 +6,8 @@
 #include <CGAL/Simple_cartesian.h>
 #include <tbb/parallel_for.h>
 
-#include <limits>
 #include <cmath>
+#include <limits>
 
 namespace curvetet::shell {
 
