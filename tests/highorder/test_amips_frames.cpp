@@ -124,3 +124,26 @@ TEST(AmipsFrames, InvertedIsInfiniteAndBoundStopsEarly) {
   EXPECT_GE(f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero(), 3.0), 3.0); // AMIPS >= 3 everywhere
   EXPECT_EQ(f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero(), 2 * full), full);
 }
+
+// The optimizer checks a step's lattice in its trial and the other samples
+// on acceptance: the two ranges together give every sample's measures.
+TEST(AmipsFrames, LatticeAndTheRestMakeEverySample) {
+  for (int p = 2; p <= 4; ++p) {
+    const AmipsFrames& f = amips_frames(p);
+    const auto nodes = mapped_tet(p, unit_tet(), gentle_bend);
+    std::vector<Eigen::Matrix3d> k(f.num_points());
+    f.frames(nodes.data(), k.data());
+    const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+    const double inf = std::numeric_limits<double>::infinity();
+    const int n = f.num_lattice_points();
+    if (p != 3) ASSERT_LT(n, f.num_points()) << "order " << p; // at P = 3 both lattices are of order 6
+    EXPECT_EQ(std::max(f.max_amips(k.data(), nullptr, zero, inf, n), f.max_amips(k.data(), nullptr, zero, inf, -1, n)),
+              f.max_amips(k.data(), nullptr, zero));
+    EXPECT_EQ(std::min(f.min_scaled_jacobian(k.data(), nullptr, zero, -inf, n),
+                       f.min_scaled_jacobian(k.data(), nullptr, zero, -inf, -1, n)),
+              f.min_scaled_jacobian(k.data(), nullptr, zero));
+    // The rest alone differs from the lattice alone (else the split is moot).
+    if (n < f.num_points())
+      EXPECT_NE(f.max_amips(k.data(), nullptr, zero, inf, -1, n), f.max_amips(k.data(), nullptr, zero, inf, n));
+  }
+}

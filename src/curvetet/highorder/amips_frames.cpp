@@ -42,11 +42,11 @@ void AmipsFrames::add_direction(int local, double w, Eigen::Vector3d* c) const {
 }
 
 double AmipsFrames::max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,
-                              double bound, int points) const {
+                              double bound, int points, int from) const {
   const int n = points < 0 ? points_ : std::min(points, points_);
   const double bound_cubed = bound * bound * bound;
   double worst_cubed = 0;
-  for (int q = 0; q < n && worst_cubed < bound_cubed; ++q) {
+  for (int q = from; q < n && worst_cubed < bound_cubed; ++q) {
     Eigen::Matrix3d k = frames[q];
     if (c) k.noalias() += d * c[q].transpose();
     const double det = k.determinant();
@@ -58,10 +58,10 @@ double AmipsFrames::max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector
 }
 
 double AmipsFrames::min_scaled_jacobian(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c,
-                                        const Eigen::Vector3d& d, double floor, int points) const {
+                                        const Eigen::Vector3d& d, double floor, int points, int from) const {
   const int n = points < 0 ? points_ : std::min(points, points_);
   double worst = std::numeric_limits<double>::infinity();
-  for (int q = 0; q < n && !(worst < floor); ++q) {
+  for (int q = from; q < n && !(worst < floor); ++q) {
     Eigen::Matrix3d k = frames[q];
     if (c) k.noalias() += d * c[q].transpose();
     worst = std::min(worst, scaled_jacobian(k * w_));

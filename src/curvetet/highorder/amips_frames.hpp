@@ -35,15 +35,17 @@ class AmipsFrames {
   // c[q] += w h_{local,q} for every point q.
   void add_direction(int local, double w, Eigen::Vector3d* c) const;
 
-  // Max over points q < `points` (-1: all) of AMIPS(K_q + d c_q^T)
-  // (c == nullptr: of K_q). Stops at the first point reaching `bound` (the
-  // result is then >= bound).
+  // Max over points from <= q < `points` (-1: all) of AMIPS(K_q + d c_q^T)
+  // (c == nullptr: of K_q); 0 for no point. Stops at the first point
+  // reaching `bound` (the result is then >= bound).
   double max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,
-                   double bound = std::numeric_limits<double>::infinity(), int points = -1) const;
-  // Min over the same points of the scaled Jacobian of (K_q + d c_q^T) W.
-  // Stops at the first point below `floor` (the result is then < floor).
+                   double bound = std::numeric_limits<double>::infinity(), int points = -1, int from = 0) const;
+  // Min over the same points of the scaled Jacobian of (K_q + d c_q^T) W
+  // (+inf for no point). Stops at the first point below `floor` (the result
+  // is then < floor).
   double min_scaled_jacobian(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,
-                             double floor = -std::numeric_limits<double>::infinity(), int points = -1) const;
+                             double floor = -std::numeric_limits<double>::infinity(), int points = -1,
+                             int from = 0) const;
 
  private:
   int points_ = 0, lattice_points_ = 0, nodes_ = 0;

@@ -429,13 +429,16 @@ class CurvedOptimizer {
     for (const auto& [id, w] : mv.nodes) saved.push_back(m_.nodes[id]);
     bool certificate_failed = false;
     // Keeps d when the touched tets meet the constraints at every sample of
-    // the convention (the trials above see its order-2P lattice only, so
-    // what is reported is what is optimized) and are certified positive.
+    // the convention (so what is reported is what is optimized) and are
+    // certified positive. Only for a d whose trial passed: its order-2P
+    // lattice is already known to meet them (same sums, same or stricter
+    // bounds), so the check starts after it.
+    const int lattice = table_.num_lattice_points();
     const auto accept_at = [&](const Vec3& d) {
       for (int k : all) {
         const Vec3* c = &x.directions[k * q_];
-        if (!(table_.max_amips(x.frames[k], c, d, amips_bound) < amips_bound)) return false;
-        const double sj = table_.min_scaled_jacobian(x.frames[k], c, d, sj_floor);
+        if (!(table_.max_amips(x.frames[k], c, d, amips_bound, -1, lattice) < amips_bound)) return false;
+        const double sj = table_.min_scaled_jacobian(x.frames[k], c, d, sj_floor, -1, lattice);
         if (goal == Goal::amips ? sj < sj_floor : !(sj > sj_floor)) return false;
       }
       place(mv, saved, d);

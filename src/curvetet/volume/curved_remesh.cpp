@@ -160,6 +160,7 @@ class Remesher {
   struct Candidate {
     Proposal p;
     bool is_collapse = false;
+    StarLimits limits{}; // set by run_best
     double new_max = 0;
   };
 
@@ -168,22 +169,20 @@ class Remesher {
   // first whose new tets pass the checks under the limits the caller sets
   // for it (cap = the AMIPS a new tet may reach anyway).
   bool run_best(std::vector<Candidate>& candidates, double amips_cap) {
-    std::vector<double> bounds;
-    for (const auto& k : candidates) bounds.push_back(limits_for(k.p, amips_cap).max_amips);
+    for (auto& k : candidates) k.limits = limits_for(k.p, amips_cap);
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, candidates.size(), 1),
         [&](const tbb::blocked_range<std::size_t>& r) {
           TetEditor& replica = up_to_date_replica();
           for (std::size_t k = r.begin(); k < r.end(); ++k)
-            candidates[k].new_max = preview(replica, candidates[k].p, bounds[k]);
+            candidates[k].new_max = preview(replica, candidates[k].p, candidates[k].limits.max_amips);
         },
         tbb::simple_partitioner());
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const Candidate& a, const Candidate& b) { return a.new_max < b.new_max; });
     for (const Candidate& k : candidates) {
-      const StarLimits limits = limits_for(k.p, amips_cap);
-      if (!(k.new_max < limits.max_amips)) break; // sorted: none of the rest fits either
-      if (apply(k.p, limits)) {
+      if (!(k.new_max < k.limits.max_amips)) break; // sorted: none of the rest fits either
+      if (apply(k.p, k.limits)) {
         count(k.p, k.is_collapse);
         return true;
       }
