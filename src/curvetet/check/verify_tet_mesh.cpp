@@ -245,6 +245,10 @@ TetMeshVerification verify_tet_mesh(const mesh::TetMesh& m, const TetMeshVerifyO
   BoundaryLinearization lin = linearize_boundary(boundaries.domain, r.segments_per_edge);
   r.linearized_faces = lin.surface.faces.size();
   r.surface = check_preconditions(mesh::to_soup(lin.surface));
+  if (r.surface.ok()) {
+    r.curved_boundary = certify_curved_boundary(boundaries.domain);
+    r.curved_boundary_checked = true;
+  }
   if (o.input) check_distances(boundaries.domain, lin, o, r);
   return r;
 }
@@ -266,6 +270,20 @@ std::string TetMeshVerification::text() const {
                    linearized_faces, surface.ok() ? "closed, manifold, oriented, no self-intersection" : "FAIL");
   if (!surface.ok())
     for (const auto& d : surface.defects) s += "    " + d.message + "\n";
+  if (curved_boundary_checked) {
+    const auto& c = curved_boundary;
+    s += fmt::format("  curved boundary: {} triangles, {} close pairs: {} ({} piece proofs, up to {} splits)\n",
+                     c.patches, c.pairs,
+                     c.ok() ? "certified to meet only at shared corners and edges"
+                            : fmt::format("FAIL, {} not settled", c.unsettled.size()),
+                     c.piece_tests, c.deepest);
+    if (!c.ok()) {
+      std::string pairs;
+      for (std::size_t k = 0; k < std::min<std::size_t>(c.unsettled.size(), 10); ++k)
+        pairs += fmt::format("{}({}, {})", k ? ", " : "", c.unsettled[k].first, c.unsettled[k].second);
+      s += "    boundary triangle pairs (0-based; (i, i): triangle i alone): " + pairs + "\n";
+    }
+  }
   if (exterior_tets > 0) {
     s += fmt::format("  exterior region: {} tets, {} interface triangles, {} outer triangles: {}\n", exterior_tets,
                      interface_triangles, outer_triangles,
@@ -310,6 +328,17 @@ nlohmann::json TetMeshVerification::json() const {
                      {"boundary_node_mismatch", boundary_node_mismatch}};
   j["boundary_surface"] = surface.json();
   j["boundary_surface"]["segments_per_edge"] = segments_per_edge;
+  j["boundary_surface"]["ok"] = surface_ok();
+  if (curved_boundary_checked) {
+    nlohmann::json unsettled = nlohmann::json::array();
+    for (const auto& [a, b] : curved_boundary.unsettled) unsettled.push_back({a, b});
+    j["boundary_surface"]["curved"] = {{"ok", curved_boundary.ok()},
+                                       {"triangles", curved_boundary.patches},
+                                       {"close_pairs", curved_boundary.pairs},
+                                       {"piece_proofs", curved_boundary.piece_tests},
+                                       {"deepest_split", curved_boundary.deepest},
+                                       {"unsettled_pairs", unsettled}};
+  }
   if (exterior_tets > 0)
     j["exterior"] = {{"tets", exterior_tets},
                      {"interface_triangles", interface_triangles},

@@ -21,7 +21,10 @@
 //    (check/boundary_linearization.hpp, s segments per edge) must pass the
 //    input preconditions exactly: closed, edge- and vertex-manifold,
 //    consistently oriented, outward, no zero-area triangle, no
-//    self-intersection (exact predicates on the linearization).
+//    self-intersection (exact predicates on the linearization). That is a
+//    fast pre-filter; the curved patches themselves are then certified to
+//    meet only where they share a corner or an edge
+//    (check/curved_boundary_certificate.hpp: Bézier hulls, subdivision).
 // 4. With an input surface: distance from every input vertex to the curved
 //    boundary (check/curved_distance.hpp: to an actual point of it, so an
 //    upper bound of the true distance) and from every linearization vertex
@@ -32,6 +35,7 @@
 //    (samples of the curved boundary, s per edge): a lower bound of the true
 //    maximum that the shell's sampled bound (shell/surface_distance.hpp)
 //    guarantees from above.
+#include "curvetet/check/curved_boundary_certificate.hpp"
 #include "curvetet/check/preconditions.hpp"
 #include "curvetet/highorder/jacobian_certificate.hpp"
 #include "curvetet/mesh/surface_mesh.hpp"
@@ -80,6 +84,10 @@ struct TetMeshVerification {
   std::size_t linearized_faces = 0;
   PreconditionReport surface;
   PreconditionReport outer_surface; // exterior's outer faces (empty and ok with one region)
+  // The curved domain boundary, certified when its linearization passed.
+  bool curved_boundary_checked = false;
+  CurvedBoundaryCertificate curved_boundary;
+  bool surface_ok() const { return surface.ok() && curved_boundary_checked && curved_boundary.ok(); }
 
   // Distances (with input).
   bool has_input = false;
@@ -96,7 +104,7 @@ struct TetMeshVerification {
   bool boundary_to_input_ok() const { return !has_input || boundary_to_input_max <= epsilon; }
   bool distance_ok() const { return input_to_boundary_ok() && boundary_to_input_ok(); }
   bool ok() const {
-    return positivity_ok() && conformity_ok() && surface.ok() && outer_surface.ok() && distance_ok();
+    return positivity_ok() && conformity_ok() && surface_ok() && outer_surface.ok() && distance_ok();
   }
   std::string text() const;
   nlohmann::json json() const;

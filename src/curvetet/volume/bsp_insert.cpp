@@ -1,5 +1,6 @@
 #include "curvetet/volume/bsp_insert.hpp"
 
+#include "curvetet/volume/bsp_filters.hpp"
 #include "curvetet/volume/homogeneous.hpp"
 #include "curvetet/volume/mesh_keys.hpp"
 
@@ -20,7 +21,6 @@
 namespace curvetet::volume::exact {
 namespace {
 
-constexpr double kUnit = std::numeric_limits<double>::epsilon() / 2;
 
 // Plane {x : n.(x - a) = 0}; a is a double point, n exact; n points to the
 // positive side.
@@ -72,41 +72,23 @@ struct TriangleShape {
   Point corner[3];
 };
 
-// Exact side of a point (double filter first).
+// Exact side of a point (double filter first, bsp_filters.hpp).
 int side_of(const Plane& p, const Point& x) {
-  const double s = p.nd.dot(x.d - p.a);
-  const double m = std::max(x.d.cwiseAbs().maxCoeff(), p.a.cwiseAbs().maxCoeff());
-  const double bound = 128 * kUnit * p.nd_l1 * m;
-  if (s > bound) return 1;
-  if (s < -bound) return -1;
+  if (const int s = side_filter(p.nd, p.nd_l1, p.a, x.d)) return s;
   return sgn(value(p.h, x.h));
 }
 
 // sign(((q - p) x (x - p)) . n), n the normal of plane pl.
 int orient_in_plane(const Point& p, const Point& q, const Point& x, const Plane& pl) {
   if (&x == &p || &x == &q) return 0;
-  {
-    // double filter: coordinates within 4u|.| of the exact ones, n within u
-    const Vec3 u = q.d - p.d, w = x.d - p.d;
-    const double val = u.cross(w).dot(pl.nd);
-    const double m = std::max({p.d.cwiseAbs().maxCoeff(), q.d.cwiseAbs().maxCoeff(), x.d.cwiseAbs().maxCoeff()});
-    const double a = u.cwiseAbs().maxCoeff(), b = w.cwiseAbs().maxCoeff();
-    const double bound = 1024 * kUnit * pl.nd_l1 * (m * (a + b) + a * b + m * m * 1e-300);
-    if (val > bound) return 1;
-    if (val < -bound) return -1;
-  }
+  if (const int s = orient_in_plane_filter(p.d, q.d, x.d, pl.nd, pl.nd_l1)) return s;
   return exact::orient_in_plane(p.h, q.h, x.h, pl.h.n);
 }
 
 // Whether p, q, x lie on one line: (q - p) x (x - p) == 0, on the double
 // approximations where they decide it, else on the homogeneous integers.
 bool collinear(const Point& p, const Point& q, const Point& x) {
-  const Vec3 u = q.d - p.d, w = x.d - p.d;
-  const Vec3 c = u.cross(w);
-  const double m = std::max({p.d.cwiseAbs().maxCoeff(), q.d.cwiseAbs().maxCoeff(), x.d.cwiseAbs().maxCoeff()});
-  const double a = u.cwiseAbs().maxCoeff(), b = w.cwiseAbs().maxCoeff();
-  const double bound = 1024 * kUnit * (m * (a + b) + a * b + m * m * 1e-300);
-  if (c.cwiseAbs().maxCoeff() > bound) return false;
+  if (not_collinear_filter(p.d, q.d, x.d)) return false;
   mpz_class hu[3], hw[3];
   for (int i = 0; i < 3; ++i) {
     hu[i] = q.h.x[i] * p.h.w - p.h.x[i] * q.h.w;
@@ -608,10 +590,7 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
   const int ntet = static_cast<int>(bg.tets.size());
   std::vector<Eigen::AlignedBox3d> tri_box(nt);
   for (int t : cut_ids) {
-    for (int k : triangles[t]) tri_box[t].extend(P[k]);
-    const double pad = 1e-9 * (tri_box[t].max().cwiseAbs().maxCoeff() + tri_box[t].min().cwiseAbs().maxCoeff());
-    tri_box[t].min().array() -= pad;
-    tri_box[t].max().array() += pad;
+    for (int k : triangles[t]) tri_box[t].extend(P[k]); // exact corners: no pad
   }
   lap("triangle/tet incidence");
   std::vector<TriangleShape> shapes(cut_ids.size());
@@ -644,7 +623,8 @@ InsertedSurface insert_surface(const BackgroundMesh& bg, const std::vector<mesh:
           if (count > 1) {
             Eigen::AlignedBox3d box;
             for (int i : cx.cell_vertices(c)) box.extend(cx.v.d[i]);
-            const double pad = 1e-9 * (box.max().cwiseAbs().maxCoeff() + box.min().cwiseAbs().maxCoeff());
+            // The cell's vertices are approximations: grow to hold the exact ones.
+            const double pad = approximation_pad(std::max(box.max().cwiseAbs().maxCoeff(), box.min().cwiseAbs().maxCoeff()));
             box.min().array() -= pad;
             box.max().array() += pad;
             if (!box.intersects(tri_box[t])) continue;

@@ -20,7 +20,8 @@ QPoint to_q(const HPoint& p);
 // Divides out the common factor of x and w (keeps sizes bounded by the
 // three-plane bound however deep the cut that made the point).
 void normalize(HPoint& p);
-// Coordinates within 4u relative of the exact ones (no overflow for any size).
+// Coordinates within 5u relative of the exact ones (two truncated mantissas,
+// a rounded quotient; no overflow for any size).
 Vec3 approximate(const HPoint& p);
 
 // Plane n.x = d with integer n and d (any positive multiple of the rational
