@@ -64,8 +64,8 @@ CoarsenStats coarsen_checked(Shell& s) {
   const auto m = check_map(s);
   EXPECT_LT(m.max_distance, st.epsilon);
   EXPECT_EQ(m.points_outside, 0);
-  EXPECT_LE(m.max_area_error, 1e-9) << "prism " << m.worst_prism;
-  EXPECT_GE(m.min_piece_area, -1e-12);
+  EXPECT_EQ(m.prisms_not_tiled, 0) << "prism " << m.worst_prism << ", area error " << m.max_area_error;
+  EXPECT_EQ(m.prisms_folded, 0) << "min piece " << m.min_piece_area;
   return st;
 }
 

@@ -96,10 +96,16 @@ struct MapCheck {
   double max_distance = 0;   // max ||p - middle(image(p))|| over s.points
   int worst_point = -1;
   int points_outside = 0;    // images not inside their prism (Π(p) recomputed differs)
-  double max_area_error = 0; // max over prisms |sum of image areas - 1|
-  double min_piece_area = 0; // smallest signed image piece (>= -1e-12 means positive)
+  // Bijectivity, exact: prisms whose tracked faces' images do not tile the
+  // middle triangle (sum != 1) or have a negative piece.
+  int prisms_not_tiled = 0, prisms_folded = 0;
+  double max_area_error = 0; // nearest double to the largest |sum of image areas - 1|
+  double min_piece_area = 0; // nearest double to the smallest signed image piece
   int worst_prism = -1;
+  bool bijective() const { return prisms_not_tiled == 0 && prisms_folded == 0; }
 };
-MapCheck check_map(const Shell& s);
+// With bijectivity = false only the distances and containment (the exact
+// tiling costs rational arithmetic per tracked face).
+MapCheck check_map(const Shell& s, bool bijectivity = true);
 
 } // namespace curvetet::shell

@@ -9,7 +9,7 @@
 
 namespace curvetet::shell {
 
-MapCheck check_map(const Shell& s) {
+MapCheck check_map(const Shell& s, bool bijectivity) {
   MapCheck out;
   // Distance and consistency of every stored image.
   const int P = static_cast<int>(s.points.size());
@@ -39,22 +39,21 @@ MapCheck check_map(const Shell& s) {
       if (dist[i] >= out.max_distance) out.worst_point = i;
     }
   }
-  // Bijectivity: the images of the tracked faces tile each middle triangle.
-  const int F = s.num_prisms();
+  // Bijectivity: the images of the tracked faces tile each middle triangle,
+  // decided in exact rationals.
+  const int F = bijectivity ? s.num_prisms() : 0;
   const mesh::SurfaceMesh bar{s.straight.empty() ? s.input.vertices : s.straight, s.input.faces}; // M̄
-  std::vector<double> err(F, 0), piece(F, 0);
-  tbb::parallel_for(0, F, [&](int f) {
-    const auto a = image_area_sum(prism_geom(s, f), bar, s.tracked[f]);
-    err[f] = std::abs(a.area - 1);
-    piece[f] = a.min_piece;
-  });
+  std::vector<ExactImageArea> area(F);
+  tbb::parallel_for(0, F, [&](int f) { area[f] = exact_image_area_sum(prism_geom(s, f), bar, s.tracked[f]); });
   out.min_piece_area = std::numeric_limits<double>::infinity();
   for (int f = 0; f < F; ++f) {
-    if (err[f] > out.max_area_error) {
-      out.max_area_error = err[f];
+    out.prisms_not_tiled += !area[f].tiles;
+    out.prisms_folded += !area[f].positive;
+    if (area[f].error > out.max_area_error || (!area[f].tiles && out.worst_prism < 0)) {
+      out.max_area_error = area[f].error;
       out.worst_prism = f;
     }
-    out.min_piece_area = std::min(out.min_piece_area, piece[f]);
+    out.min_piece_area = std::min(out.min_piece_area, area[f].min_piece);
   }
   if (F == 0) out.min_piece_area = 0;
   return out;

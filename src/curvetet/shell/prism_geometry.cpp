@@ -6,6 +6,7 @@
 #include "curvetet/shell/tet_contact.hpp"
 
 #include <Eigen/Dense>
+#include <gmpxx.h>
 
 #include <algorithm>
 #include <cmath>
@@ -306,6 +307,133 @@ ImageArea image_area_sum(const PrismGeom& g, const mesh::SurfaceMesh& input, std
     }
   }
   if (out.min_piece == std::numeric_limits<double>::infinity()) out.min_piece = 0;
+  return out;
+}
+
+namespace {
+
+using Rational = mpq_class;
+using ExactBarycentric = std::array<Rational, 4>;
+
+// det[b - a, c - a, d - a] of double points, exactly.
+Rational exact_orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  Rational m[3][3];
+  for (int i = 0; i < 3; ++i) {
+    m[0][i] = Rational(b[i]) - a[i];
+    m[1][i] = Rational(c[i]) - a[i];
+    m[2][i] = Rational(d[i]) - a[i];
+  }
+  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+// Barycentric coordinates times the tet's volume (sum = volume): the clip is
+// homogeneous in them, so the division waits for the final area.
+ExactBarycentric scaled_barycentric(const TetFrame& t, const Vec3& x) {
+  ExactBarycentric l;
+  for (int i = 0; i < 4; ++i) {
+    Vec3 q[4] = {t.p[0], t.p[1], t.p[2], t.p[3]};
+    q[i] = x;
+    l[i] = exact_orient(q[0], q[1], q[2], q[3]);
+  }
+  return l;
+}
+
+// tet_piece in exact arithmetic on scaled barycentric coordinates: twice the
+// (u, v) area of the clipped image times the volume squared.
+std::optional<Rational> exact_piece(const TetFrame& t, const Vec3& a, const Vec3& b, const Vec3& c,
+                                    std::vector<ExactBarycentric> poly) {
+  for (int i = 0; i < 4; ++i)
+    if (sgn(poly[0][i]) == 0 && sgn(poly[1][i]) == 0 && sgn(poly[2][i]) == 0 && orient3d(a, b, c, t.p[i]) < 0)
+      return std::nullopt;
+  for (int i = 0; i < 4 && !poly.empty(); ++i) {
+    std::vector<ExactBarycentric> next;
+    for (std::size_t j = 0; j < poly.size(); ++j) {
+      const auto& P = poly[j];
+      const auto& Q = poly[(j + 1) % poly.size()];
+      const bool pin = sgn(P[i]) >= 0, qin = sgn(Q[i]) >= 0;
+      if (pin) next.push_back(P);
+      if (pin != qin) {
+        const Rational w = P[i] / (P[i] - Q[i]);
+        ExactBarycentric X;
+        for (int k = 0; k < 4; ++k) X[k] = P[k] + (Q[k] - P[k]) * w;
+        next.push_back(std::move(X));
+      }
+    }
+    poly = std::move(next);
+  }
+  if (poly.size() < 3) return std::nullopt;
+  std::vector<std::array<Rational, 2>> uv;
+  for (const auto& l : poly) {
+    std::array<Rational, 2> r{0, 0};
+    for (int k = 0; k < 4; ++k)
+      for (int d = 0; d < 2; ++d) r[d] += l[k] * Rational(t.r[k][d]);
+    uv.push_back(std::move(r));
+  }
+  Rational twice = 0;
+  for (std::size_t j = 0; j < uv.size(); ++j) {
+    const auto& p = uv[j];
+    const auto& q = uv[(j + 1) % uv.size()];
+    twice += p[0] * q[1] - p[1] * q[0];
+  }
+  return twice;
+}
+
+} // namespace
+
+ExactImageArea exact_image_area_sum(const PrismGeom& g, const mesh::SurfaceMesh& input, std::span<const int> faces) {
+  std::vector<int> verts;
+  for (int f : faces)
+    for (int v : input.faces[f]) verts.push_back(v);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  auto local = [&](int v) { return std::lower_bound(verts.begin(), verts.end(), v) - verts.begin(); };
+  Rational area = 0;
+  ExactImageArea out;
+  out.positive = true;
+  out.min_piece = std::numeric_limits<double>::infinity();
+  for (Slab slab : kSlabs)
+    for (const auto& tet : canonical_split(g.ids)) {
+      if (g.zero_pillar(slab, tet.pillar)) continue;
+      const TetFrame t = frame(g, slab, tet);
+      const Rational volume = exact_orient(t.p[0], t.p[1], t.p[2], t.p[3]);
+      if (sgn(volume) <= 0) continue; // only defined on positive prisms
+      // Exact signs of the barycentric coordinates first (filtered
+      // predicates): a face wholly outside one face plane, the common case,
+      // needs no rationals.
+      std::vector<std::array<int, 4>> sign(verts.size());
+      for (std::size_t k = 0; k < verts.size(); ++k)
+        for (int i = 0; i < 4; ++i) {
+          Vec3 q[4] = {t.p[0], t.p[1], t.p[2], t.p[3]};
+          q[i] = input.vertices[verts[k]];
+          sign[k][i] = orient3d(q[0], q[1], q[2], q[3]);
+        }
+      std::vector<std::optional<ExactBarycentric>> bary(verts.size());
+      auto exact = [&](int v) -> const ExactBarycentric& {
+        auto& b = bary[local(v)];
+        if (!b) b = scaled_barycentric(t, input.vertices[v]);
+        return *b;
+      };
+      Rational tet_area = 0; // times volume²
+      const double volume_squared = volume.get_d() * volume.get_d();
+      for (int f : faces) {
+        const auto& tri = input.faces[f];
+        bool outside = false;
+        for (int i = 0; i < 4 && !outside; ++i)
+          outside = sign[local(tri[0])][i] < 0 && sign[local(tri[1])][i] < 0 && sign[local(tri[2])][i] < 0;
+        if (outside) continue;
+        const Vec3 &a = input.vertices[tri[0]], &b = input.vertices[tri[1]], &c = input.vertices[tri[2]];
+        const auto piece = exact_piece(t, a, b, c, {exact(tri[0]), exact(tri[1]), exact(tri[2])});
+        if (!piece) continue;
+        tet_area += *piece;
+        out.positive = out.positive && sgn(*piece) >= 0;
+        out.min_piece = std::min(out.min_piece, piece->get_d() / volume_squared);
+      }
+      area += tet_area / (volume * volume);
+    }
+  if (out.min_piece == std::numeric_limits<double>::infinity()) out.min_piece = 0;
+  out.tiles = cmp(area, 1) == 0;
+  out.error = Rational(abs(area - 1)).get_d();
   return out;
 }
 

@@ -83,4 +83,15 @@ ImageArea image_area(const PrismGeom& g, const Vec3& a, const Vec3& b, const Vec
 // = min), each input vertex's barycentric coordinates computed once.
 ImageArea image_area_sum(const PrismGeom& g, const mesh::SurfaceMesh& input, std::span<const int> faces);
 
+// The same sum in exact rationals (barycentric coordinates as ratios of exact
+// determinants, exact clipping and areas): the map is a bijection onto the
+// middle triangle exactly when the pieces tile it, i.e. sum to exactly 1
+// with no negative piece. `error` and `min_piece` are the doubles nearest
+// |sum - 1| and the smallest piece, for reports.
+struct ExactImageArea {
+  bool tiles = false, positive = false;
+  double error = 0, min_piece = 0;
+};
+ExactImageArea exact_image_area_sum(const PrismGeom& g, const mesh::SurfaceMesh& input, std::span<const int> faces);
+
 } // namespace curvetet::shell
