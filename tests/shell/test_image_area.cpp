@@ -115,3 +115,27 @@ TEST(ImageArea, CouplingdownAfterOneRoundTilesWithin1e9) {
   EXPECT_EQ(m.prisms_not_tiled, 0) << "prism " << m.worst_prism << ", area error " << m.max_area_error;
   EXPECT_EQ(m.prisms_folded, 0) << "min piece " << m.min_piece_area;
 }
+
+// The exact tiling behind check_map: the nearly coplanar fan tiles exactly;
+// with one corner pulled 1e-11 inside, the fan leaves a sliver uncovered
+// that a sum within 1e-9 of 1 (the former rule) forgave.
+TEST(ImageArea, ExactTilingSeesASliverTheDoubleSumForgave) {
+  for (int rot = 0; rot < 10; ++rot)
+    for (double offset : {-1e-13, 1e-10, 1e-4}) {
+      const TiltedPrism p(0.1 + 0.3 * rot, 0.05);
+      const Vec3 q = (p.g.middle[0] + p.g.middle[1] + p.g.middle[2]) / 3.0 + offset * p.normal;
+      mesh::SurfaceMesh fan{{p.g.middle[0], p.g.middle[1], p.g.middle[2], q}, {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}}};
+      const std::vector<int> all{0, 1, 2};
+      const auto exact = exact_image_area_sum(p.g, fan, all);
+      EXPECT_TRUE(exact.tiles) << "rotation " << rot << " offset " << offset << ": error " << exact.error;
+      EXPECT_TRUE(exact.positive);
+
+      fan.vertices[0] += 1e-11 * (q - fan.vertices[0]);
+      const auto gap = exact_image_area_sum(p.g, fan, all);
+      EXPECT_FALSE(gap.tiles) << "rotation " << rot << " offset " << offset;
+      EXPECT_TRUE(gap.positive);
+      EXPECT_GT(gap.error, 0);
+      EXPECT_LT(gap.error, 1e-9); // what the double rule accepted
+      EXPECT_NEAR(image_area_sum(p.g, fan, all).area, 1.0, 1e-9);
+    }
+}

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <tuple>
 #include <vector>
 
 namespace curvetet::shell {
@@ -312,69 +314,109 @@ ImageArea image_area_sum(const PrismGeom& g, const mesh::SurfaceMesh& input, std
 
 namespace {
 
+using Integer = mpz_class;
 using Rational = mpq_class;
-using ExactBarycentric = std::array<Rational, 4>;
+using IntPoint = std::array<Integer, 3>;
+// Barycentric coordinates up to a positive factor (their sum): the clip
+// below is homogeneous in them, so it needs neither division nor gcd.
+using Homogeneous = std::array<Integer, 4>;
 
-// det[b - a, c - a, d - a] of double points, exactly.
-Rational exact_orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  Rational m[3][3];
+// Doubles as integers on one common grid 2^E (E = the smallest ulp among
+// them): exact, and every determinant below is an integer.
+struct IntegerGrid {
+  int exponent = 0;
+  explicit IntegerGrid(const std::vector<Vec3>& points) {
+    exponent = std::numeric_limits<int>::max();
+    for (const auto& p : points)
+      for (int i = 0; i < 3; ++i)
+        if (p[i] != 0) {
+          int e = 0;
+          std::frexp(p[i], &e);
+          exponent = std::min(exponent, e - 53);
+        }
+    if (exponent == std::numeric_limits<int>::max()) exponent = 0;
+  }
+  IntPoint operator()(const Vec3& p) const {
+    IntPoint out;
+    for (int i = 0; i < 3; ++i) {
+      int e = 0;
+      const double f = std::frexp(p[i], &e); // p = f 2^e, f 2^53 an integer
+      out[i] = Integer(std::ldexp(f, 53));
+      out[i] <<= static_cast<unsigned long>(e - 53 - exponent);
+    }
+    return out;
+  }
+};
+
+// det[b - a, c - a, d - a].
+Integer orient(const IntPoint& a, const IntPoint& b, const IntPoint& c, const IntPoint& d) {
+  Integer m[3][3];
   for (int i = 0; i < 3; ++i) {
-    m[0][i] = Rational(b[i]) - a[i];
-    m[1][i] = Rational(c[i]) - a[i];
-    m[2][i] = Rational(d[i]) - a[i];
+    m[0][i] = b[i] - a[i];
+    m[1][i] = c[i] - a[i];
+    m[2][i] = d[i] - a[i];
   }
   return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
          m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 
-// Barycentric coordinates times the tet's volume (sum = volume): the clip is
-// homogeneous in them, so the division waits for the final area.
-ExactBarycentric scaled_barycentric(const TetFrame& t, const Vec3& x) {
-  ExactBarycentric l;
+// Barycentric coordinates of x times the tet's volume (positive).
+Homogeneous scaled_barycentric(const std::array<IntPoint, 4>& tet, const IntPoint& x) {
+  Homogeneous l;
   for (int i = 0; i < 4; ++i) {
-    Vec3 q[4] = {t.p[0], t.p[1], t.p[2], t.p[3]};
+    auto q = tet;
     q[i] = x;
-    l[i] = exact_orient(q[0], q[1], q[2], q[3]);
+    l[i] = orient(q[0], q[1], q[2], q[3]);
   }
   return l;
 }
 
-// tet_piece in exact arithmetic on scaled barycentric coordinates: twice the
-// (u, v) area of the clipped image times the volume squared.
+// tet_piece in exact arithmetic: twice the (u, v) area of the clipped image.
+// An edge leaving face plane i from P (P_i >= 0) to Q (Q_i < 0) crosses it
+// at P_i Q - Q_i P: coordinate i zero, weight positive.
 std::optional<Rational> exact_piece(const TetFrame& t, const Vec3& a, const Vec3& b, const Vec3& c,
-                                    std::vector<ExactBarycentric> poly) {
+                                    std::vector<Homogeneous> poly) {
   for (int i = 0; i < 4; ++i)
     if (sgn(poly[0][i]) == 0 && sgn(poly[1][i]) == 0 && sgn(poly[2][i]) == 0 && orient3d(a, b, c, t.p[i]) < 0)
       return std::nullopt;
   for (int i = 0; i < 4 && !poly.empty(); ++i) {
-    std::vector<ExactBarycentric> next;
+    std::vector<Homogeneous> next;
     for (std::size_t j = 0; j < poly.size(); ++j) {
       const auto& P = poly[j];
       const auto& Q = poly[(j + 1) % poly.size()];
       const bool pin = sgn(P[i]) >= 0, qin = sgn(Q[i]) >= 0;
       if (pin) next.push_back(P);
       if (pin != qin) {
-        const Rational w = P[i] / (P[i] - Q[i]);
-        ExactBarycentric X;
-        for (int k = 0; k < 4; ++k) X[k] = P[k] + (Q[k] - P[k]) * w;
+        const auto& [in, out] = pin ? std::tie(P, Q) : std::tie(Q, P);
+        Homogeneous X;
+        for (int k = 0; k < 4; ++k) X[k] = in[i] * out[k] - out[i] * in[k];
         next.push_back(std::move(X));
       }
     }
     poly = std::move(next);
   }
   if (poly.size() < 3) return std::nullopt;
-  std::vector<std::array<Rational, 2>> uv;
+  // (u, v) = (A, B) / W per vertex, the reference corners' coordinates small integers.
+  struct Projected {
+    Integer A, B, W;
+  };
+  std::vector<Projected> uv;
   for (const auto& l : poly) {
-    std::array<Rational, 2> r{0, 0};
-    for (int k = 0; k < 4; ++k)
-      for (int d = 0; d < 2; ++d) r[d] += l[k] * Rational(t.r[k][d]);
+    Projected r{0, 0, 0};
+    for (int k = 0; k < 4; ++k) {
+      r.A += l[k] * static_cast<long>(t.r[k][0]);
+      r.B += l[k] * static_cast<long>(t.r[k][1]);
+      r.W += l[k];
+    }
     uv.push_back(std::move(r));
   }
   Rational twice = 0;
   for (std::size_t j = 0; j < uv.size(); ++j) {
     const auto& p = uv[j];
     const auto& q = uv[(j + 1) % uv.size()];
-    twice += p[0] * q[1] - p[1] * q[0];
+    Rational term(p.A * q.B - p.B * q.A, p.W * q.W);
+    term.canonicalize();
+    twice += term;
   }
   return twice;
 }
@@ -388,49 +430,54 @@ ExactImageArea exact_image_area_sum(const PrismGeom& g, const mesh::SurfaceMesh&
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
   auto local = [&](int v) { return std::lower_bound(verts.begin(), verts.end(), v) - verts.begin(); };
+  std::vector<TetFrame> tets;
+  for (Slab slab : kSlabs)
+    for (const auto& tet : canonical_split(g.ids))
+      if (!g.zero_pillar(slab, tet.pillar)) tets.push_back(frame(g, slab, tet));
+  std::vector<Vec3> all;
+  for (const auto& t : tets) all.insert(all.end(), t.p, t.p + 4);
+  for (int v : verts) all.push_back(input.vertices[v]);
+  const IntegerGrid grid(all);
+  std::vector<IntPoint> vert_int;
+  for (int v : verts) vert_int.push_back(grid(input.vertices[v]));
+
   Rational area = 0;
   ExactImageArea out;
   out.positive = true;
   out.min_piece = std::numeric_limits<double>::infinity();
-  for (Slab slab : kSlabs)
-    for (const auto& tet : canonical_split(g.ids)) {
-      if (g.zero_pillar(slab, tet.pillar)) continue;
-      const TetFrame t = frame(g, slab, tet);
-      const Rational volume = exact_orient(t.p[0], t.p[1], t.p[2], t.p[3]);
-      if (sgn(volume) <= 0) continue; // only defined on positive prisms
-      // Exact signs of the barycentric coordinates first (filtered
-      // predicates): a face wholly outside one face plane, the common case,
-      // needs no rationals.
-      std::vector<std::array<int, 4>> sign(verts.size());
-      for (std::size_t k = 0; k < verts.size(); ++k)
-        for (int i = 0; i < 4; ++i) {
-          Vec3 q[4] = {t.p[0], t.p[1], t.p[2], t.p[3]};
-          q[i] = input.vertices[verts[k]];
-          sign[k][i] = orient3d(q[0], q[1], q[2], q[3]);
-        }
-      std::vector<std::optional<ExactBarycentric>> bary(verts.size());
-      auto exact = [&](int v) -> const ExactBarycentric& {
-        auto& b = bary[local(v)];
-        if (!b) b = scaled_barycentric(t, input.vertices[v]);
-        return *b;
-      };
-      Rational tet_area = 0; // times volume²
-      const double volume_squared = volume.get_d() * volume.get_d();
-      for (int f : faces) {
-        const auto& tri = input.faces[f];
-        bool outside = false;
-        for (int i = 0; i < 4 && !outside; ++i)
-          outside = sign[local(tri[0])][i] < 0 && sign[local(tri[1])][i] < 0 && sign[local(tri[2])][i] < 0;
-        if (outside) continue;
-        const Vec3 &a = input.vertices[tri[0]], &b = input.vertices[tri[1]], &c = input.vertices[tri[2]];
-        const auto piece = exact_piece(t, a, b, c, {exact(tri[0]), exact(tri[1]), exact(tri[2])});
-        if (!piece) continue;
-        tet_area += *piece;
-        out.positive = out.positive && sgn(*piece) >= 0;
-        out.min_piece = std::min(out.min_piece, piece->get_d() / volume_squared);
+  for (const auto& t : tets) {
+    const std::array<IntPoint, 4> tet{grid(t.p[0]), grid(t.p[1]), grid(t.p[2]), grid(t.p[3])};
+    if (sgn(orient(tet[0], tet[1], tet[2], tet[3])) <= 0) continue; // only defined on positive prisms
+    // Exact signs of the barycentric coordinates first (filtered
+    // predicates): a face wholly outside one face plane, the common case,
+    // needs no big integers.
+    std::vector<std::array<int, 4>> sign(verts.size());
+    for (std::size_t k = 0; k < verts.size(); ++k)
+      for (int i = 0; i < 4; ++i) {
+        Vec3 q[4] = {t.p[0], t.p[1], t.p[2], t.p[3]};
+        q[i] = input.vertices[verts[k]];
+        sign[k][i] = orient3d(q[0], q[1], q[2], q[3]);
       }
-      area += tet_area / (volume * volume);
+    std::vector<std::optional<Homogeneous>> bary(verts.size());
+    auto exact = [&](int v) -> const Homogeneous& {
+      auto& b = bary[local(v)];
+      if (!b) b = scaled_barycentric(tet, vert_int[local(v)]);
+      return *b;
+    };
+    for (int f : faces) {
+      const auto& tri = input.faces[f];
+      bool outside = false;
+      for (int i = 0; i < 4 && !outside; ++i)
+        outside = sign[local(tri[0])][i] < 0 && sign[local(tri[1])][i] < 0 && sign[local(tri[2])][i] < 0;
+      if (outside) continue;
+      const Vec3 &a = input.vertices[tri[0]], &b = input.vertices[tri[1]], &c = input.vertices[tri[2]];
+      const auto piece = exact_piece(t, a, b, c, {exact(tri[0]), exact(tri[1]), exact(tri[2])});
+      if (!piece) continue;
+      area += *piece;
+      out.positive = out.positive && sgn(*piece) >= 0;
+      out.min_piece = std::min(out.min_piece, piece->get_d());
     }
+  }
   if (out.min_piece == std::numeric_limits<double>::infinity()) out.min_piece = 0;
   out.tiles = cmp(area, 1) == 0;
   out.error = Rational(abs(area - 1)).get_d();
