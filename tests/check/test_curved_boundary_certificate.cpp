@@ -110,3 +110,46 @@ TEST(CurvedBoundaryCertificate, PiecesKeepTheRootsCornersExactly) {
   EXPECT_TRUE(check::meet_only_along_edge(pieces[0], 1, 2, pieces[3], 2, 1));
   EXPECT_TRUE(check::meet_only_at_corner(pieces[0], 1, pieces[1], 0));
 }
+
+TEST(PatchSeparation, ThinPiecesSideBySideInATiltedPlaneAreApart) {
+  // Slivers in the plane x = z along the diagonal s = t, 0.01 apart across
+  // it: their boxes overlap at every size, an in-plane axis separates them.
+  auto on_plane = [](double s, double t) { return Vector3d(s, t, s); };
+  const std::vector<Vector3d> a{on_plane(0, 0), on_plane(1, 0.99), on_plane(1, 1)};
+  const std::vector<Vector3d> b{on_plane(0, 0.01), on_plane(1, 1.01), on_plane(0, 0.02)};
+  const auto pa = check::root_patch(1, a), pb = check::root_patch(1, b);
+  EXPECT_TRUE(geometry::boxes_overlap(pa.box(), pb.box()));
+  EXPECT_TRUE(check::apart(pa, pb));
+  // Moved across the diagonal, b crosses a: no axis may claim otherwise.
+  const std::vector<Vector3d> crossing{on_plane(0.5, 0.49), on_plane(1, 1.01), on_plane(0, 0.02)};
+  EXPECT_FALSE(check::apart(pa, check::root_patch(1, crossing)));
+}
+
+TEST(CurvedBoundaryCertificate, WigglyEdgePatchIsCertified) {
+  // A boundary triangle of the main job's output on couplingdown (P = 4):
+  // its edge 2-0 wiggles by 4e-5 and the speed along it varies 20 times, so
+  // pieces near the edge are slivers side by side (boxes alone never parted
+  // them), and one corner's 28 directions sit within a few degrees (the
+  // linear program's default pricing cycled there).
+  mesh::TetMesh m;
+  m.order = 4;
+  m.nodes = {{0.49213800000000002, 1.5455999999999999e-09, -0.18239},
+             {0.48961300000000002, 0.049788100000000002, -0.18239},
+             {0.5, 0, -0.17452799999999999},
+             {0.49329359467649103, 0.012817341527740795, -0.18068464963012013},
+             {0.49099410984925113, 0.024921019393034299, -0.18227658160991095},
+             {0.48863532009738575, 0.037011212948210664, -0.18392522278474632},
+             {0.49220974999999995, 0.037341075000000001, -0.18042449999999999},
+             {0.49480649999999998, 0.024894050000000001, -0.17845900000000001},
+             {0.49740325000000013, 0.012447025, -0.17649350000000003},
+             {0.49663901265942911, 4.2835867214198489e-05, -0.17788312532609674},
+             {0.49606899975471908, 7.7864231688972449e-10, -0.17845900016929805},
+             {0.49549898697264955, -4.2834312850723148e-05, -0.17903487492785036},
+             {0.496176218421854, 0.01266177723997192, -0.17856851225890857},
+             {0.4939478812379357, 0.024889687742012116, -0.18011191166783386},
+             {0.49661577875861684, 0.012566895381679963, -0.17809787918161735}};
+  for (int i = 0; i < 15; ++i) m.boundary.push_back(i);
+  const auto c = check::certify_curved_boundary(m);
+  EXPECT_TRUE(c.ok());
+  EXPECT_GT(c.deepest, 4);
+}

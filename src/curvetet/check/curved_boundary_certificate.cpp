@@ -76,7 +76,7 @@ bool pieces_settled(const BezierPatch& root_a, const BezierPatch& root_b, const 
     std::array<std::array<int, 2>, 3> shared{};
     const int n = shared_corners(f.a, f.b, map, shared);
     const bool settled =
-        n == 0   ? !geometry::boxes_overlap(f.a.box(), f.b.box())
+        n == 0   ? apart(f.a, f.b)
         : n == 1 ? meet_only_at_corner(f.a, shared[0][0], f.b, shared[0][1])
         : n == 2 ? meet_only_along_edge(f.a, shared[0][0], shared[1][0], f.b, shared[0][1], shared[1][1])
                  : false;

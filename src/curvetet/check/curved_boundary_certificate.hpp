@@ -7,8 +7,9 @@
 // Each boundary triangle is a Bézier patch (check/bezier_patch.hpp). Pairs
 // whose boxes overlap are examined piece by piece, splitting both at edge
 // midpoints until every pair of pieces is settled by one of three proofs:
-//  - no shared point (by the pieces' exact parameters): their boxes are
-//    disjoint;
+//  - no shared point (by the pieces' exact parameters): their boxes, or
+//    their extents along one of their normals or edges' in-plane normals,
+//    are disjoint;
 //  - one shared corner: a plane through it separates the two control nets
 //    (patch_separation.hpp);
 //  - one shared edge: the union of the two pieces is embedded;

@@ -108,7 +108,11 @@ Vec3 deepest_separator(const std::vector<Vec3>& w) {
   }
   lp.set_u(3, true, 1.0);
   lp.set_c(3, -1.0);
-  const auto solution = CGAL::solve_linear_program(lp, CGAL::Gmpzf());
+  // Bland's rule: the default pricing cycled on a near-degenerate corner
+  // (28 directions within a few degrees of each other).
+  CGAL::Quadratic_program_options options;
+  options.set_pricing_strategy(CGAL::QP_BLAND);
+  const auto solution = CGAL::solve_linear_program(lp, CGAL::Gmpzf(), options);
   if (!solution.is_optimal() || !(CGAL::to_double(-solution.objective_value()) > 0)) return Vec3::Zero();
   Vec3 nu;
   auto value = solution.variable_values_begin();
@@ -116,7 +120,40 @@ Vec3 deepest_separator(const std::vector<Vec3>& w) {
   return nu;
 }
 
+// The extent [lo, hi] of ν · c over the exact control points c of p: each
+// within p.radius per coordinate of the stored one (|ν|₁ r); the dot
+// product of three terms errs by γ3 of Σ|ν_i||c_i|, and the pad and the
+// final sums round by u each of the same scale: 5u |ν|₁ max_abs in all.
+std::array<double, 2> extent(const BezierPatch& p, const Vec3& nu) {
+  double lo = kInf, hi = -kInf;
+  for (const auto& c : p.control) {
+    lo = std::min(lo, nu.dot(c));
+    hi = std::max(hi, nu.dot(c));
+  }
+  const double pad = nu.lpNorm<1>() * (p.radius + 5 * kU * p.max_abs) * (1 + 4 * kU);
+  return {lo - pad, hi + pad};
+}
+
+bool apart_along(const BezierPatch& a, const BezierPatch& b, const Vec3& nu) {
+  if (!(nu.squaredNorm() > 0)) return false;
+  const auto ea = extent(a, nu), eb = extent(b, nu);
+  return ea[1] < eb[0] || eb[1] < ea[0];
+}
+
 } // namespace
+
+bool apart(const BezierPatch& a, const BezierPatch& b) {
+  if (!geometry::boxes_overlap(a.box(), b.box())) return true;
+  // Any axis is sound (the extents are bounds); these are the ones that
+  // separate two nearly coplanar triangles or two stacked ones.
+  for (const BezierPatch* p : {&a, &b}) {
+    const Vec3 n = corner_normal(*p);
+    if (apart_along(a, b, n)) return true;
+    for (int v = 0; v < 3; ++v)
+      if (apart_along(a, b, n.cross(p->corner((v + 1) % 3) - p->corner(v)))) return true;
+  }
+  return false;
+}
 
 bool meet_only_at_corner(const BezierPatch& a, int ia, const BezierPatch& b, int ib) {
   const Vec3& x = a.corner(ia);

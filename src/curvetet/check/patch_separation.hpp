@@ -9,6 +9,13 @@
 
 namespace curvetet::check {
 
+// Pieces a and b that share no point of their roots are disjoint: their
+// boxes are, or an axis (their normals, and in-plane normals of their
+// edges) keeps their control hulls' extents apart. Thin pieces side by side
+// in a tilted plane keep overlapping boxes at every depth; the in-plane
+// axes separate them.
+bool apart(const BezierPatch& a, const BezierPatch& b);
+
 // Pieces a and b whose corners ia and ib are the same exact point x meet at
 // x only: a plane through x has every other control point of a strictly on
 // one side and every other one of b strictly on the other, so the hulls
