@@ -64,15 +64,20 @@ struct Frame {
 // Pieces a (of root_a) and b (of root_b) meet only where they share. Pieces
 // that share corners are split together, so their shared parts stay whole
 // edges or corners of both; pieces that share nothing stay so when split,
-// and only the larger is split.
+// and only the larger is split. Each proof tried takes one from `budget`.
 bool pieces_settled(const BezierPatch& root_a, const BezierPatch& root_b, const SlotMap& map, Frame start,
-                    const CurvedBoundaryOptions& o, Counters& counters) {
+                    const CurvedBoundaryOptions& o, Counters& counters, std::size_t& budget) {
   std::vector<Frame> stack{std::move(start)};
   std::size_t tests = 0;
   while (!stack.empty()) {
     Frame f = std::move(stack.back());
     stack.pop_back();
-    if (++tests > o.max_tests_per_pair) return false;
+    if (budget == 0) {
+      counters.tests += tests;
+      return false;
+    }
+    --budget;
+    ++tests;
     std::array<std::array<int, 2>, 3> shared{};
     const int n = shared_corners(f.a, f.b, map, shared);
     const bool settled =
@@ -102,20 +107,25 @@ bool pieces_settled(const BezierPatch& root_a, const BezierPatch& root_b, const 
 }
 
 // The patch is embedded: it passes alone, or its four pieces are embedded
-// and pairwise meet only where they share.
+// and pairwise meet only where they share. One budget for the whole patch,
+// as for a pair: the sibling pairs of every level would multiply it.
 bool patch_embedded(const BezierPatch& root, const CurvedBoundaryOptions& o, Counters& counters) {
+  std::size_t budget = o.max_tests_per_pair;
   std::vector<std::pair<BezierPatch, int>> stack{{root, 0}};
   while (!stack.empty()) {
     auto [piece, depth] = std::move(stack.back());
     stack.pop_back();
     ++counters.tests;
+    if (budget == 0) return false;
+    --budget;
     if (embedded(piece)) continue;
     if (depth >= o.max_depth) return false;
     counters.reached(depth + 1);
     const auto pieces = split_patch(root, piece);
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
-        if (!pieces_settled(root, root, kSameRoot, {pieces[i], pieces[j], depth + 1, depth + 1}, o, counters))
+        if (!pieces_settled(root, root, kSameRoot, {pieces[i], pieces[j], depth + 1, depth + 1}, o, counters,
+                            budget))
           return false;
     for (const auto& p : pieces) stack.emplace_back(p, depth + 1);
   }
@@ -175,7 +185,8 @@ CurvedBoundaryCertificate certify_curved_boundary(const mesh::TetMesh& m, const 
   tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
     const auto [ta, tb] = pairs[k];
     const auto map = slot_map(m, ta, tb);
-    pair_ok[k] = map && pieces_settled(roots[ta], roots[tb], *map, {roots[ta], roots[tb], 0, 0}, o, counters);
+    std::size_t budget = o.max_tests_per_pair;
+    pair_ok[k] = map && pieces_settled(roots[ta], roots[tb], *map, {roots[ta], roots[tb], 0, 0}, o, counters, budget);
   });
   tbb::parallel_for(0, nb, [&](int t) { patch_ok[t] = patch_embedded(roots[t], o, counters); });
   for (int t = 0; t < nb; ++t)

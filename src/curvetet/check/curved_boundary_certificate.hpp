@@ -26,7 +26,7 @@ namespace curvetet::check {
 
 struct CurvedBoundaryOptions {
   int max_depth = 16;                       // midpoint splits per patch
-  std::size_t max_tests_per_pair = 1 << 16; // pieces compared before giving up on a pair
+  std::size_t max_tests_per_pair = 1 << 16; // proofs tried before giving up on a pair, or on a patch alone
 };
 
 struct CurvedBoundaryCertificate {
