@@ -609,6 +609,27 @@ TEST(TetEditor, SplitOfAHullEdgeIsRejected) {
 }
 
 
+// --- 8. shapes ------------------------------------------------------------
+
+// A tet whose Jacobian is not positive has an infinite AMIPS in the cache
+// (it used to read an empty optional: the shape left in that slot before).
+TEST(TetEditor, ShapeOfAnInvertedTetIsInfinite) {
+  TetEditor e(straight_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 1, 2, 3}}, 2));
+  e.begin();
+  e.kill(0);
+  const int good = e.add({0, 1, 2, 3}, mesh::kDomainTag);
+  EXPECT_LT(e.shape(good).max_amips, 10);
+  e.rollback();
+  e.begin();
+  e.kill(0);
+  const int inverted = e.add({0, 2, 1, 3}, mesh::kDomainTag);
+  EXPECT_EQ(inverted, good); // the same slot
+  EXPECT_EQ(e.shape(inverted).max_amips, std::numeric_limits<double>::infinity());
+  EXPECT_LT(e.shape(inverted).min_scaled_jacobian, 0);
+  e.rollback();
+}
+
+
 // relax_new_nodes: the nodes a flip creates stay straight where every kept
 // node is (a harmonic extension of zero), and where a kept node is bent they
 // follow it, by no more than it moved and in its direction (maximum

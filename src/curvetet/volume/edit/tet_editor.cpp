@@ -151,7 +151,8 @@ const TetShape& TetEditor::shape(int t) const {
   if (!shape_known_[t]) {
     Vec3 x[165]; // order <= 8
     positions(t, x);
-    shapes_[t] = *tet_shape(order_, x);
+    const auto s = tet_shape(order_, x);
+    shapes_[t] = s ? *s : kInvertedShape;
     shape_known_[t] = 1;
   }
   return shapes_[t];

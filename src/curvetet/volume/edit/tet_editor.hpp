@@ -47,7 +47,8 @@ class TetEditor {
   const Corners& corners(int t) const { return corners_[t]; }
   const int* nodes(int t) const { return tet_nodes_.data() + static_cast<std::size_t>(t) * np_; }
   int tag(int t) const { return tags_[t]; }
-  // Shape of tet t (evaluated on first use, then cached).
+  // Shape of tet t (evaluated on first use, then cached); kInvertedShape
+  // when a sample's Jacobian is not positive.
   const TetShape& shape(int t) const;
   // Whether tet t's max AMIPS is below bound (stops at the first sample
   // that is not, without caching).

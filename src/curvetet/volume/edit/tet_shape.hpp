@@ -15,6 +15,10 @@ struct TetShape {
   double min_scaled_jacobian = 0;
 };
 
+// The shape of a tet with a sample whose Jacobian is not positive.
+inline constexpr TetShape kInvertedShape{std::numeric_limits<double>::infinity(),
+                                         -std::numeric_limits<double>::infinity()};
+
 // The shape, or nullopt as soon as a sample's AMIPS reaches `bound`
 // (corners first). Straight tets (nodes on their corners' affine map to
 // 1e-12 of the size, as tet_quality decides) take one evaluation.
