@@ -29,12 +29,20 @@ AmipsFrames::AmipsFrames(int order) {
   for (int q = 0; q < points_; ++q) h_.middleCols<3>(3 * q) = lagrange_gradients(3, order, xis[q].data()) * w_inv;
 }
 
-void AmipsFrames::frames(const Eigen::Vector3d* nodes, Eigen::Matrix3d* frames) const {
+void AmipsFrames::frames(const Eigen::Vector3d* nodes, Eigen::Matrix3d* frames, int points) const {
   // All frames at once: [K_0 K_1 ...] = X H, X = [x_0 ... x_n-1] (3 x n);
   // an array of column-major Matrix3d is that 3 x 3P column-major matrix.
+  const int n = points < 0 ? points_ : std::min(points, points_);
   const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> x(nodes[0].data(), 3, nodes_);
-  Eigen::Map<Eigen::Matrix<double, 3, Eigen::Dynamic>> k(frames[0].data(), 3, 3 * points_);
-  k.noalias() = x * h_;
+  Eigen::Map<Eigen::Matrix<double, 3, Eigen::Dynamic>> k(frames[0].data(), 3, 3 * n);
+  k.noalias() = x * h_.leftCols(3 * n);
+}
+
+void AmipsFrames::node_gradients(const Eigen::Matrix3d* dfdk, Eigen::Vector3d* out, int points) const {
+  const int n = points < 0 ? points_ : std::min(points, points_);
+  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> g(dfdk[0].data(), 3, 3 * n);
+  Eigen::Map<Eigen::Matrix<double, 3, Eigen::Dynamic>> x(out[0].data(), 3, nodes_);
+  x.noalias() = g * h_.leftCols(3 * n).transpose();
 }
 
 void AmipsFrames::add_direction(int local, double w, Eigen::Vector3d* c) const {

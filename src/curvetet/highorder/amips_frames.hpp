@@ -29,9 +29,16 @@ class AmipsFrames {
   int num_points() const { return points_; }                 // every sample
   int num_lattice_points() const { return lattice_points_; } // the order-2P lattice's, first
   int num_nodes() const { return nodes_; }
+  // W, the reference tet -> the regular tet of unit edge (J = K W).
+  const Eigen::Matrix3d& reference_to_regular() const { return w_; }
 
-  // frames[q] = K_q for q < num_points(); nodes in internal (Gmsh) order.
-  void frames(const Eigen::Vector3d* nodes, Eigen::Matrix3d* frames) const;
+  // frames[q] = K_q for q < points (-1: num_points()); nodes in internal
+  // (Gmsh) order.
+  void frames(const Eigen::Vector3d* nodes, Eigen::Matrix3d* frames, int points = -1) const;
+  // The gradient of a function of the frames of the first `points` points
+  // (-1: all) with respect to the nodes: out[l] = sum_q dfdk[q] h_{l,q}
+  // (dfdk[q] = d f / d K_q).
+  void node_gradients(const Eigen::Matrix3d* dfdk, Eigen::Vector3d* out, int points = -1) const;
   // c[q] += w h_{local,q} for every point q.
   void add_direction(int local, double w, Eigen::Vector3d* c) const;
 

@@ -166,9 +166,14 @@ TetQuality tet_quality(int order, const Eigen::Vector3d* nodes) {
 }
 
 double triangle_max_mips(int order, const Eigen::Vector3d* nodes) {
-  const Quadrature rule = triangle_quadrature(order + 1);
+  if (order == 1) return triangle_mips(triangle_jacobian(1, nodes, Eigen::Vector2d::Zero()));
+  const SimplexLattice& l = lattice(2, 2 * order);
   double m = 0;
-  for (const auto& p : rule.points) m = std::max(m, triangle_mips(triangle_jacobian(order, nodes, p.head<2>())));
+  for (const MultiIndex& a : l.indices()) {
+    const Eigen::Vector2d uv(a[1] / double(2 * order), a[2] / double(2 * order));
+    m = std::max(m, triangle_mips(triangle_jacobian(order, nodes, uv)));
+    if (!std::isfinite(m)) break;
+  }
   return m;
 }
 

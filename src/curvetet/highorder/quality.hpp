@@ -62,7 +62,10 @@ double scaled_jacobian(const Eigen::Matrix3d& j);
 double amips(const Eigen::Matrix3d& j); // regular tet: 3
 double triangle_mips(const Eigen::Matrix<double, 3, 2>& j);
 
-// Max MIPS of a curved triangle over quadrature points.
+// Max MIPS of a curved triangle over the order-2k lattice with its corners
+// (as tets are sampled; +inf where the map degenerates). A tet on this
+// triangle has at least the AMIPS its distortion forces at each point, so a
+// distorted curved face makes a bad tet however its other nodes are placed.
 double triangle_max_mips(int order, const Eigen::Vector3d* nodes);
 
 } // namespace curvetet::highorder

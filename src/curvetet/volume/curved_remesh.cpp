@@ -1,6 +1,7 @@
 #include "curvetet/volume/curved_remesh.hpp"
 
 #include "curvetet/core/log.hpp"
+#include "curvetet/volume/curved_descent.hpp"
 #include "curvetet/volume/edit/operations.hpp"
 #include "curvetet/volume/edit/tet_editor.hpp"
 
@@ -331,6 +332,7 @@ nlohmann::json CurvedRemeshStats::json() const {
           {"node_moves", node_moves},
           {"rejected", rejections},
           {"rounds", rounds},
+          {"descent", descent.json()},
           {"seconds", seconds}};
 }
 
@@ -378,6 +380,7 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
     last = now;
     if (changed < o.min_operations * m.num_tets() || !gained || now.max_amips <= o.collapse_amips) break;
   }
+  if (o.descend) s.descent = descend_curved(m, o.descent);
   const MeshQuality after = mesh_quality(m);
   s.tets_after = m.num_tets();
   s.max_amips_after = after.max_amips;

@@ -18,6 +18,8 @@
 //  3. the quality pass again, for the tets above collapse_amips;
 //  4. smoothing (optimize_curved: steps tried on the convention's order-2P
 //     lattice, accepted on every sample).
+// After the rounds, every free node moves at once (descend_curved: tets
+// sharing curved nodes that no single move improves).
 // No operation takes a tet below min(min_scaled_jacobian, the old star's
 // min scaled Jacobian). Rounds stop when no tet above collapse_amips is left,
 // or one runs fewer than min_operations (x tets) operations or lowers the
@@ -27,6 +29,7 @@
 // does not depend on the thread count.
 // AMIPS in the validator's convention (highorder/quality.hpp).
 #include "curvetet/mesh/tet_mesh.hpp"
+#include "curvetet/volume/curved_descent.hpp"
 #include "curvetet/volume/curved_optimize.hpp"
 #include "curvetet/volume/edit/invariants.hpp"
 
@@ -42,12 +45,13 @@ struct CurvedRemeshOptions {
   double collapse_amips = 30;        // a coarsening collapse may create tets up to this
   double split_amips = 100;          // the quality pass splits edges of tets above this only
   double min_scaled_jacobian = 0.05; // floor (see above)
-  bool collapse = true, flip = true, split = true, smooth = true;
+  bool collapse = true, flip = true, split = true, smooth = true, descend = true;
   CurvedOptimizeOptions smoothing = [] {
     CurvedOptimizeOptions o;
     o.bad_fraction = 0.1; // the topology passes handle the bulk; smoothing polishes the worst
     return o;
   }();
+  CurvedDescentOptions descent;
 };
 
 struct CurvedRemeshStats {
@@ -58,6 +62,7 @@ struct CurvedRemeshStats {
   edit::RejectCounts rejected{};
   int vertex_moves = 0, node_moves = 0; // smoothing
   int rounds = 0;
+  CurvedDescentStats descent;
   double seconds = 0;
   nlohmann::json json() const;
 };

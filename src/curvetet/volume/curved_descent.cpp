@@ -1,0 +1,349 @@
+#include "curvetet/volume/curved_descent.hpp"
+
+#include "curvetet/core/log.hpp"
+#include "curvetet/highorder/amips_frames.hpp"
+#include "curvetet/highorder/jacobian_certificate.hpp"
+#include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/highorder/quality.hpp"
+
+#include <Eigen/Dense>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <map>
+#include <vector>
+
+namespace curvetet::volume {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// The reference tet's edges leaving each corner.
+const std::array<std::array<Vec3, 3>, 4> kCornerEdges = {{{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)},
+                                                           {Vec3(-1, 0, 0), Vec3(-1, 1, 0), Vec3(-1, 0, 1)},
+                                                           {Vec3(0, -1, 0), Vec3(1, -1, 0), Vec3(0, -1, 1)},
+                                                           {Vec3(0, 0, -1), Vec3(1, 0, -1), Vec3(0, 1, -1)}}};
+constexpr int kRounds = 4; // optimizations, each holding the tets the previous one could not keep
+
+// Nodes that never move: those of listed boundary triangles and of hull
+// faces (faces of one tet).
+std::vector<char> pinned_nodes(const mesh::TetMesh& m) {
+  std::vector<char> pinned(m.nodes.size(), 0);
+  for (int id : m.boundary) pinned[id] = 1;
+  const int np = m.tet_nodes();
+  std::map<std::array<int, 3>, std::pair<int, int>> uses; // sorted corners -> (count, tet * 4 + face)
+  for (int t = 0; t < m.num_tets(); ++t)
+    for (int f = 0; f < 4; ++f) {
+      std::array<int, 3> key;
+      for (int k = 0; k < 3; ++k) key[k] = m.tets[t * np + highorder::kTetFaces[f][k]];
+      std::sort(key.begin(), key.end());
+      auto& u = uses[key];
+      ++u.first;
+      u.second = t * 4 + f;
+    }
+  for (const auto& [key, u] : uses)
+    if (u.first == 1)
+      for (int i : highorder::tet_face_nodes(m.order, u.second % 4)) pinned[m.tets[(u.second / 4) * np + i]] = 1;
+  return pinned;
+}
+
+// E and dE/dx over the free nodes (see the header). Per-tet terms in
+// parallel, summed in tet order.
+class Energy {
+ public:
+  Energy(mesh::TetMesh& m, const std::vector<int>& free_index, int num_free, double power)
+      : m_(m), free_(free_index), num_free_(num_free), power_(power), frames_(highorder::amips_frames(m.order)),
+        points_(frames_.num_lattice_points()), np_(m.tet_nodes()), term_(m.num_tets()),
+        grad_(static_cast<std::size_t>(m.num_tets()) * np_) {
+    for (int t = 0; t < m.num_tets(); ++t)
+      for (int i = 0; i < np_; ++i)
+        if (free_[m.tets[t * np_ + i]] >= 0) {
+          tets_.push_back(t);
+          break;
+        }
+    // The references: the worst AMIPS and scaled Jacobian at the start.
+    std::vector<double> worst_sj(m.num_tets(), kInf);
+    for_tets([&](int t, std::vector<Mat3>& k, std::vector<Mat3>&, std::vector<Vec3>&) {
+      double w = 0;
+      for (int q = 0; q < points_; ++q) {
+        w = std::max(w, amips(k[q]));
+        worst_sj[t] = std::min(worst_sj[t], frames_.min_scaled_jacobian(&k[q], nullptr, Vec3::Zero(), -kInf, 1));
+      }
+      term_[t] = w;
+    });
+    double worst = 0, least_sj = kInf;
+    for (int t : tets_) {
+      worst = std::max(worst, term_[t]);
+      least_sj = std::min(least_sj, worst_sj[t]);
+    }
+    amips_ref_ = std::isfinite(worst) && worst > 0 ? worst : 1;
+    sj_ref_ = least_sj > 0 && std::isfinite(least_sj) ? least_sj : 1;
+  }
+
+  int points() const { return static_cast<int>(tets_.size()) * points_; }
+  void set(const Eigen::VectorXd& x) {
+    for (std::size_t n = 0; n < free_.size(); ++n)
+      if (free_[n] >= 0) m_.nodes[n] = x.segment<3>(3 * free_[n]);
+  }
+  Eigen::VectorXd get() const {
+    Eigen::VectorXd x(3 * num_free_);
+    for (std::size_t n = 0; n < free_.size(); ++n)
+      if (free_[n] >= 0) x.segment<3>(3 * free_[n]) = m_.nodes[n];
+    return x;
+  }
+
+  // E at the mesh's current nodes (+inf where a point is not positive);
+  // with `grad`, also its gradient.
+  double operator()(Eigen::VectorXd* grad) {
+    for_tets([&](int t, std::vector<Mat3>& k, std::vector<Mat3>& dk, std::vector<Vec3>& g) {
+      double e = 0;
+      for (int q = 0; q < points_ && std::isfinite(e); ++q) e += point_energy(k[q], grad ? &dk[q] : nullptr);
+      term_[t] = e;
+      if (!grad || !std::isfinite(e)) return;
+      frames_.node_gradients(dk.data(), g.data(), points_);
+      std::copy(g.begin(), g.end(), grad_.begin() + static_cast<std::ptrdiff_t>(t) * np_);
+    });
+    double e = 0;
+    for (int t : tets_) e += term_[t];
+    if (!grad || !std::isfinite(e)) return e;
+    grad->setZero(3 * num_free_);
+    for (int t : tets_)
+      for (int i = 0; i < np_; ++i)
+        if (const int f = free_[m_.tets[t * np_ + i]]; f >= 0)
+          grad->segment<3>(3 * f) += grad_[static_cast<std::size_t>(t) * np_ + i];
+    return e;
+  }
+
+ private:
+  // The terms of one point with frame K: (AMIPS / A0)^p and, for each
+  // corner frame, (sJ0 / scaled Jacobian)^p (AMIPS alone lets a corner
+  // frame's angle close while the frame's shape improves); with dk, their
+  // derivative by K. Logarithms make the scaled Jacobian's simple:
+  // d log sJ / dJ = J^-T - sum over its edges e of (J e) e^T / |J e|^2.
+  double point_energy(const Mat3& k, Mat3* dk) const {
+    const double det = k.determinant();
+    if (!(det > 0)) return kInf;
+    const double det23 = std::cbrt(det * det), norm2 = k.squaredNorm(), a = norm2 / det23;
+    const double amips_term = std::pow(a / amips_ref_, power_);
+    double e = amips_term;
+    if (dk) *dk = (power_ * amips_term / a) / det23 * (2 * k - (2.0 / 3.0) * norm2 * k.inverse().transpose());
+    const Mat3& w = frames_.reference_to_regular();
+    const Mat3 j = k * w;
+    const double log_det = std::log(det * w.determinant());
+    Mat3 dj = Mat3::Zero();
+    for (const auto& corner : kCornerEdges) {
+      double log_sj = std::log(std::sqrt(2.0)) + log_det;
+      Vec3 je[3];
+      for (int i = 0; i < 3; ++i) {
+        je[i] = j * corner[i];
+        log_sj -= 0.5 * std::log(je[i].squaredNorm());
+      }
+      const double term = std::exp(power_ * (std::log(sj_ref_) - log_sj));
+      e += term;
+      if (!dk) continue;
+      Mat3 dlog = j.inverse().transpose();
+      for (int i = 0; i < 3; ++i) dlog -= je[i] * corner[i].transpose() / je[i].squaredNorm();
+      dj -= power_ * term * dlog;
+    }
+    if (dk) *dk += dj * w.transpose();
+    return e;
+  }
+
+  static double amips(const Mat3& k) {
+    const double det = k.determinant();
+    return det > 0 ? k.squaredNorm() / std::cbrt(det * det) : kInf;
+  }
+
+  // fn(t, frames, scratch for dE/dK, scratch for node gradients) for every
+  // tet with a free node, in parallel.
+  template <class Fn>
+  void for_tets(Fn fn) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tets_.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<Mat3> k(points_), dk(points_);
+      std::vector<Vec3> x(np_), g(np_);
+      for (std::size_t j = r.begin(); j < r.end(); ++j) {
+        const int t = tets_[j];
+        for (int i = 0; i < np_; ++i) x[i] = m_.nodes[m_.tets[t * np_ + i]];
+        frames_.frames(x.data(), k.data(), points_);
+        fn(t, k, dk, g);
+      }
+    });
+  }
+
+  mesh::TetMesh& m_;
+  const std::vector<int>& free_;
+  int num_free_;
+  double power_;
+  const highorder::AmipsFrames& frames_;
+  int points_, np_;
+  double amips_ref_ = 1, sj_ref_ = 1;
+  std::vector<int> tets_; // tets with a free node
+  std::vector<double> term_;
+  std::vector<Vec3> grad_; // per tet and local node
+};
+
+// Minimizes e from the mesh's current free nodes (left at the best point
+// found); returns the iterations run.
+int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy) {
+  Eigen::VectorXd x = e.get(), g;
+  energy = e(&g);
+  if (!std::isfinite(energy) || g.size() == 0) return 0;
+  std::deque<std::pair<Eigen::VectorXd, Eigen::VectorXd>> pairs; // (s, y)
+  std::vector<double> history{energy};
+  int it = 0;
+  for (; it < o.max_iterations; ++it) {
+    // Two-loop recursion: d = -H g.
+    Eigen::VectorXd d = -g;
+    std::vector<double> alpha(pairs.size());
+    for (int k = static_cast<int>(pairs.size()) - 1; k >= 0; --k) {
+      alpha[k] = pairs[k].first.dot(d) / pairs[k].second.dot(pairs[k].first);
+      d -= alpha[k] * pairs[k].second;
+    }
+    if (!pairs.empty()) d *= pairs.back().first.dot(pairs.back().second) / pairs.back().second.squaredNorm();
+    else d *= 1e-3 * std::sqrt(static_cast<double>(x.size())) / std::max(g.norm(), 1e-300) * x.cwiseAbs().maxCoeff();
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const double beta = pairs[k].second.dot(d) / pairs[k].second.dot(pairs[k].first);
+      d += (alpha[k] - beta) * pairs[k].first;
+    }
+    const double slope = g.dot(d);
+    if (!(slope < 0)) break;
+    Eigen::VectorXd xn, gn;
+    double en = kInf, step = 1;
+    for (int halvings = 0; halvings < 40; ++halvings, step *= 0.5) {
+      xn = x + step * d;
+      e.set(xn);
+      en = e(&gn);
+      if (en <= energy + 1e-4 * step * slope) break;
+    }
+    if (!(en < energy)) {
+      e.set(x);
+      break;
+    }
+    const Eigen::VectorXd s = xn - x, y = gn - g;
+    if (s.dot(y) > 0) {
+      pairs.emplace_back(s, y);
+      if (static_cast<int>(pairs.size()) > o.memory) pairs.pop_front();
+    }
+    x = std::move(xn);
+    g = std::move(gn);
+    energy = en;
+    history.push_back(energy);
+    const int n = static_cast<int>(history.size());
+    if (n > o.window && history[n - 1 - o.window] - energy < o.min_decrease * history[n - 1 - o.window]) {
+      ++it;
+      break;
+    }
+  }
+  return it;
+}
+
+} // namespace
+
+nlohmann::json CurvedDescentStats::json() const {
+  return {{"free_nodes", free_nodes},   {"iterations", iterations},     {"held_tets", held_tets}, {"restored_tets", restored_tets},
+          {"energy_before", energy_before}, {"energy_after", energy_after}, {"seconds", seconds}};
+}
+
+CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  CurvedDescentStats s;
+  const int nt = m.num_tets(), np = m.tet_nodes();
+  if (nt == 0) return s;
+  const auto quality = [&](int t) {
+    std::vector<Vec3> x(np);
+    for (int i = 0; i < np; ++i) x[i] = m.nodes[m.tets[t * np + i]];
+    return std::pair{highorder::tet_quality(m.order, x.data()), std::move(x)};
+  };
+  // The input's worst: the acceptance's bounds.
+  std::vector<highorder::TetQuality> before(nt);
+  tbb::parallel_for(0, nt, [&](int t) { before[t] = quality(t).first; });
+  double max_amips = 0, min_sj = kInf;
+  for (const auto& q : before) {
+    max_amips = std::max(max_amips, q.max_amips);
+    min_sj = std::min(min_sj, q.min_scaled_jacobian);
+  }
+  const double sj_floor = std::min(min_sj, o.min_scaled_jacobian);
+  const auto failing = [&](const std::vector<int>& tets) {
+    std::vector<char> fails(tets.size(), 0);
+    tbb::parallel_for(std::size_t(0), tets.size(), [&](std::size_t k) {
+      const auto [q, x] = quality(tets[k]);
+      fails[k] = !(q.max_amips <= max_amips) || !(q.min_scaled_jacobian >= sj_floor) ||
+                 highorder::certify_tet(m.order, x.data()).validity != highorder::Validity::positive;
+    });
+    std::vector<int> out;
+    for (std::size_t k = 0; k < tets.size(); ++k)
+      if (fails[k]) out.push_back(tets[k]);
+    return out;
+  };
+
+  const std::vector<Vec3> original = m.nodes;
+  std::vector<char> held = pinned_nodes(m); // nodes that stay where they are
+  std::vector<int> touched;                 // tets with a free node
+  for (int round = 0; round < kRounds; ++round) {
+    std::vector<int> free_index(m.nodes.size(), -1);
+    int free_nodes = 0;
+    touched.clear();
+    for (int t = 0; t < nt; ++t) {
+      bool any = false;
+      for (int i = 0; i < np; ++i)
+        if (const int n = m.tets[t * np + i]; !held[n]) {
+          any = true;
+          if (free_index[n] < 0) free_index[n] = free_nodes++;
+        }
+      if (any) touched.push_back(t);
+    }
+    if (round == 0) s.free_nodes = free_nodes;
+    if (free_nodes == 0) break;
+    Energy energy(m, free_index, free_nodes, o.power);
+    if (round == 0) s.energy_before = energy(nullptr) / energy.points();
+    double e = 0;
+    s.iterations += lbfgs(energy, o, e);
+    s.energy_after = e / energy.points();
+    // A tet that fails the acceptance keeps its nodes where they were, and
+    // the others are optimized again from where they were (restoring its
+    // nodes alone could invert the tets sharing them).
+    const std::vector<int> bad = failing(touched);
+    if (bad.empty()) {
+      touched.clear();
+      break;
+    }
+    if (round + 1 == kRounds) break;
+    for (int t : bad) {
+      ++s.held_tets;
+      for (int i = 0; i < np; ++i) held[m.tets[t * np + i]] = 1;
+    }
+    m.nodes = original;
+  }
+  // Still failing after the last round: restore tets one by one, checking
+  // their neighbours again (restoring every node gives the input back).
+  std::vector<std::vector<int>> tets_of(m.nodes.size());
+  for (int t = 0; t < nt; ++t)
+    for (int i = 0; i < np; ++i) tets_of[m.tets[t * np + i]].push_back(t);
+  for (std::vector<int> bad = failing(touched); !bad.empty();) {
+    std::vector<int> next;
+    for (int t : bad)
+      for (int i = 0; i < np; ++i) {
+        const int n = m.tets[t * np + i];
+        if (m.nodes[n] == original[n]) continue;
+        m.nodes[n] = original[n];
+        next.insert(next.end(), tets_of[n].begin(), tets_of[n].end());
+      }
+    s.restored_tets += static_cast<int>(bad.size());
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    bad = failing(next);
+  }
+  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  logger().debug("curved descent: {} free nodes, {} iterations, E {:.4g} -> {:.4g}, {} tets held, {} restored, {:.2f} s",
+                 s.free_nodes, s.iterations, s.energy_before, s.energy_after, s.held_tets, s.restored_tets, s.seconds);
+  return s;
+}
+
+} // namespace curvetet::volume

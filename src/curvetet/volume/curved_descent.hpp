@@ -1,0 +1,61 @@
+#pragma once
+// Joint smoothing of an order-P mesh (DESIGN.md §9, after the local
+// operations of curved_remesh.hpp): every free node moves at once.
+//
+// The local moves (curved_optimize.hpp) change one vertex or one node at a
+// time. Tets under a curved boundary face share their edge and face nodes,
+// and where two of them pull a shared node opposite ways no single move
+// lowers their worst, though moving the nodes together does (bunny at
+// P = 4: 37.2 to 26.5).
+//
+// Free: every node not on a listed boundary triangle nor on a hull face (a
+// face of one tet), so the boundary, its curved nodes and the feature curves
+// stay bit for bit.
+// Energy: E = sum over tets and over the order-2P lattice points of the
+// quality convention (highorder/amips_frames.hpp) of (AMIPS / A0)^p, A0 the
+// input's max AMIPS there. A point with det J <= 0 makes E infinite, so the
+// line searches stay where every point is positive; a large p makes E follow
+// the worst tets.
+// Method: L-BFGS with a backtracking (Armijo) line search; stops after
+// max_iterations, or when E falls by less than min_decrease over `window`
+// iterations.
+// Acceptance: every tet with a moved node is certified
+// (highorder::certify_tet; undecided = not positive) and measured on every
+// sample of the convention. While a tet is not positive, exceeds the input's
+// max AMIPS, or falls below min(min_scaled_jacobian, the input's min scaled
+// Jacobian) keeps its nodes where they were while the others are optimized
+// again from the start (up to 4 rounds; a node restored alone would bend
+// the other tets that share it); after the last round failing tets get
+// their nodes back and their neighbours are checked again, until none is
+// left.
+// Restoring every node gives the input back, so the result is always
+// certified and never worse at its worst.
+// Deterministic for any thread count: per-tet terms are computed in parallel
+// and summed in tet order.
+#include "curvetet/mesh/tet_mesh.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace curvetet::volume {
+
+struct CurvedDescentOptions {
+  double power = 8;
+  int max_iterations = 150;
+  int memory = 8;                    // L-BFGS pairs kept
+  int window = 10;                   // iterations over which...
+  double min_decrease = 0.01;        // ...E must fall by this fraction to go on
+  double min_scaled_jacobian = 0.05; // floor (see above)
+};
+
+struct CurvedDescentStats {
+  int free_nodes = 0, iterations = 0;
+  int held_tets = 0;     // tets kept as they were, the others optimized again
+  int restored_tets = 0; // after the last round, tets given their nodes back alone
+  double energy_before = 0, energy_after = 0; // E / (number of points), before restoring
+  double seconds = 0;
+  nlohmann::json json() const;
+};
+
+CurvedDescentStats descend_curved(mesh::TetMesh& mesh, const CurvedDescentOptions& options = {});
+
+} // namespace curvetet::volume
