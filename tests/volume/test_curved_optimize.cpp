@@ -1,11 +1,10 @@
 // Curved optimization: lowers the max AMIPS, never moves a boundary node,
 // and keeps every tet certified positive.
 #include "curvetet/check/verify_tet_mesh.hpp"
-#include "curvetet/geometry/predicates.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
-#include "curvetet/volume/assemble.hpp"
 #include "curvetet/volume/curved_optimize.hpp"
 #include "curvetet/volume/curved_remesh.hpp"
+#include "flat_inner_tet.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,50 +15,10 @@
 using namespace curvetet;
 using mesh::Vec3;
 
-namespace {
-
-// Middle = the unit right tet with edges bulged outward (degree 2 patches);
-// bottom = the middle shrunk to half about its centroid; fill = the bottom
-// tet split at an inner point pushed close to the bottom face (0, 2, 1):
-// a flat tet there, so a bad max AMIPS to improve.
-//
-//        3            bottom tet (0,1,2,3) split at x:
-//       /|\             (x,1,2,3) (0,x,2,3) (0,1,x,3) (0,1,2,x)
-//      / x \            x near face (0,2,1) -> (0,1,2,x) is flat
-//     0-----2
-//      \ 1 /
-mesh::TetMesh bad_mesh(int order) {
-  const std::vector<Vec3> middle = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
-  const Vec3 centre(0.25, 0.25, 0.25);
-  volume::CurvedMiddle s;
-  for (const auto& p : middle) s.bottom.push_back(centre + 0.5 * (p - centre));
-  s.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-  s.singular = {0, 0, 0, 0};
-  s.degree = 2;
-  for (const auto& f : s.faces) {
-    std::vector<Vec3> nodes = {middle[f[0]], middle[f[1]], middle[f[2]]};
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 m = 0.5 * (middle[f[k]] + middle[f[(k + 1) % 3]]);
-      nodes.push_back(m + 0.1 * (m - centre));
-    }
-    s.middle_nodes.push_back(nodes);
-  }
-  mesh::LinearTetMesh fill;
-  fill.vertices = s.bottom;
-  const Vec3 bottom_face_centre = (s.bottom[0] + s.bottom[1] + s.bottom[2]) / 3.0;
-  fill.vertices.push_back(bottom_face_centre + 0.03 * (s.bottom[3] - bottom_face_centre));
-  fill.tets = {{4, 1, 2, 3}, {0, 4, 2, 3}, {0, 1, 4, 3}, {0, 1, 2, 4}};
-  for (const auto& t : fill.tets)
-    EXPECT_EQ(geometry::orient3d(fill.vertices[t[0]], fill.vertices[t[1]], fill.vertices[t[2]], fill.vertices[t[3]]), 1);
-  return volume::assemble_curved_mesh(s, fill, order);
-}
-
-} // namespace
-
 TEST(CurvedOptimize, LowersMaxAmipsAndKeepsTheBoundaryAndPositivity) {
   for (int order : {3, 4}) {
     SCOPED_TRACE(order);
-    auto m = bad_mesh(order);
+    auto m = test::flat_inner_tet_mesh(order);
     ASSERT_TRUE(check::verify_tet_mesh(m).ok());
     const auto before = m;
     volume::CurvedOptimizeOptions o;
@@ -100,7 +59,7 @@ TEST(CurvedOptimize, NothingMovesWhenEveryNodeIsOnTheBoundary) {
 
 TEST(CurvedOptimize, UnlistedHullStaysPutToo) {
   // The same mesh without its boundary list: the faces used once are frozen.
-  auto m = bad_mesh(3);
+  auto m = test::flat_inner_tet_mesh(3);
   const auto listed = m.boundary;
   m.boundary.clear();
   m.boundary_tags.clear();
@@ -113,7 +72,7 @@ TEST(CurvedOptimize, UnlistedHullStaysPutToo) {
 }
 
 TEST(CurvedOptimize, ScaledJacobianSweepRaisesTheMinWithoutRaisingTheMaxAmips) {
-  auto m = bad_mesh(4);
+  auto m = test::flat_inner_tet_mesh(4);
   volume::CurvedOptimizeOptions o;
   o.min_amips = std::numeric_limits<double>::infinity(); // no AMIPS sweep: only the scaled-Jacobian one
   o.min_scaled_jacobian = 0.5;
@@ -128,7 +87,7 @@ TEST(CurvedOptimize, ScaledJacobianSweepRaisesTheMinWithoutRaisingTheMaxAmips) {
 }
 
 TEST(CurvedOptimize, FrameCacheSizeDoesNotChangeTheResult) {
-  auto a = bad_mesh(4), b = a;
+  auto a = test::flat_inner_tet_mesh(4), b = a;
   volume::CurvedOptimizeOptions o;
   o.bad_fraction = 1.0;
   volume::optimize_curved(a, o);
@@ -138,7 +97,7 @@ TEST(CurvedOptimize, FrameCacheSizeDoesNotChangeTheResult) {
 }
 
 TEST(CurvedOptimize, ThreadCountDoesNotChangeTheResult) {
-  auto a = bad_mesh(4), b = a;
+  auto a = test::flat_inner_tet_mesh(4), b = a;
   volume::CurvedOptimizeOptions o;
   o.bad_fraction = 1.0;
   {
@@ -153,7 +112,7 @@ TEST(CurvedOptimize, ThreadCountDoesNotChangeTheResult) {
 }
 
 TEST(CurvedOptimize, SweepCapVisitsOnlyTheWorstTets) {
-  auto all = bad_mesh(4), capped = all;
+  auto all = test::flat_inner_tet_mesh(4), capped = all;
   volume::CurvedOptimizeOptions o;
   o.bad_fraction = 1.0;
   const auto full = volume::optimize_curved(all, o);
@@ -169,7 +128,7 @@ TEST(CurvedOptimize, SweepCapVisitsOnlyTheWorstTets) {
 // The remesh previews candidates in parallel on replicas of its editor:
 // the same operations, hence the same mesh, for any thread count.
 TEST(CurvedRemesh, ThreadCountDoesNotChangeTheResult) {
-  auto a = bad_mesh(4), b = a;
+  auto a = test::flat_inner_tet_mesh(4), b = a;
   volume::CurvedRemeshOptions o;
   o.target_amips = 3.5; // visit nearly every tet
   volume::CurvedRemeshStats sa, sb;

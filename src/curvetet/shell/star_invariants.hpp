@@ -32,8 +32,6 @@
 //                     chain vertices land exactly on their edge
 //  CurvedFit          MiddleFit::fit_and_check (no-op for a linear middle;
 //                     the curved fit uses c.images as samples)
-//  CurvedMiddleQuality (ranking rule) MiddleQuality on the fitted patches:
-//                     max MIPS over each one's order-2k lattice
 //  Distance           ||p - middle(Π(β(p)))|| < epsilon for those points, the
 //                     middle evaluated through MiddleFit::evaluate
 //  SurfaceDistance    the other direction: a derived bound on the distance

@@ -12,10 +12,12 @@
 // face of one tet), so the boundary, its curved nodes and the feature curves
 // stay bit for bit.
 // Energy: E = sum over tets and over the order-2P lattice points of the
-// quality convention (highorder/amips_frames.hpp) of (AMIPS / A0)^p, A0 the
-// input's max AMIPS there. A point with det J <= 0 makes E infinite, so the
-// line searches stay where every point is positive; a large p makes E follow
-// the worst tets.
+// quality convention (highorder/amips_frames.hpp) of (AMIPS / A0)^p plus,
+// for the frames along the four corners' edges there, (J0 / sJ)^p: A0 the
+// input's max AMIPS and J0 its min scaled Jacobian over the tets with a
+// free node. A point with det J <= 0 makes E infinite, so the line searches
+// stay where every point is positive; a large p makes E follow the worst
+// tets.
 // Method: L-BFGS with a backtracking (Armijo) line search; stops after
 // max_iterations, or when E falls by less than min_decrease over `window`
 // iterations.
