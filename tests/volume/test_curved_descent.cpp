@@ -58,3 +58,25 @@ TEST(CurvedDescent, ThreadCountDoesNotChangeTheResult) {
   }
   EXPECT_EQ(a.nodes, b.nodes);
 }
+
+TEST(CurvedDescent, OnlyTheWorstTetsAndTheirRingsMove) {
+  auto all = test::flat_inner_tet_mesh(4), worst = all;
+  volume::CurvedDescentOptions o;
+  o.active_ratio = 0; // every tet
+  const auto every = volume::descend_curved(all, o);
+  o.active_ratio = 1; // the worst tet alone
+  o.rings = 0;
+  const auto before = worst;
+  const auto one = volume::descend_curved(worst, o);
+  EXPECT_GT(one.free_nodes, 0);
+  EXPECT_LT(one.free_nodes, every.free_nodes);
+  // Only free nodes move.
+  const auto q = check::verify_tet_mesh(before);
+  int moved = 0;
+  for (std::size_t n = 0; n < worst.nodes.size(); ++n) moved += worst.nodes[n] != before.nodes[n];
+  EXPECT_GT(moved, 0);
+  EXPECT_LE(moved, one.free_nodes);
+  const auto v = check::verify_tet_mesh(worst);
+  ASSERT_TRUE(v.ok()) << v.text();
+  EXPECT_LT(v.worst_amips, q.worst_amips);
+}

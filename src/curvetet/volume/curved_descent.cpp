@@ -283,8 +283,32 @@ CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& 
     return out;
   };
 
+  std::vector<std::vector<int>> tets_of(m.nodes.size());
+  for (int t = 0; t < nt; ++t)
+    for (int i = 0; i < np; ++i) tets_of[m.tets[t * np + i]].push_back(t);
+
   const std::vector<Vec3> original = m.nodes;
   std::vector<char> held = pinned_nodes(m); // nodes that stay where they are
+  // Only the worst tets and `rings` layers of tets around them move: the
+  // others weigh (active_ratio)^p or less in E.
+  std::vector<char> active(nt, 0);
+  for (int t = 0; t < nt; ++t)
+    active[t] = before[t].max_amips >= o.active_ratio * max_amips || before[t].min_scaled_jacobian * o.active_ratio <= min_sj;
+  for (int ring = 0; ring < o.rings; ++ring) {
+    std::vector<char> grown = active;
+    for (int t = 0; t < nt; ++t)
+      if (active[t])
+        for (int i = 0; i < np; ++i)
+          for (int u : tets_of[m.tets[t * np + i]]) grown[u] = 1;
+    active = std::move(grown);
+  }
+  {
+    std::vector<char> moves(m.nodes.size(), 0);
+    for (int t = 0; t < nt; ++t)
+      if (active[t])
+        for (int i = 0; i < np; ++i) moves[m.tets[t * np + i]] = 1;
+    for (std::size_t n = 0; n < held.size(); ++n) held[n] = held[n] || !moves[n];
+  }
   std::vector<int> touched;                 // tets with a free node
   for (int round = 0; round < kRounds; ++round) {
     std::vector<int> free_index(m.nodes.size(), -1);
@@ -323,9 +347,6 @@ CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& 
   }
   // Still failing after the last round: restore tets one by one, checking
   // their neighbours again (restoring every node gives the input back).
-  std::vector<std::vector<int>> tets_of(m.nodes.size());
-  for (int t = 0; t < nt; ++t)
-    for (int i = 0; i < np; ++i) tets_of[m.tets[t * np + i]].push_back(t);
   for (std::vector<int> bad = failing(touched); !bad.empty();) {
     std::vector<int> next;
     for (int t : bad)

@@ -8,9 +8,12 @@
 // lowers their worst, though moving the nodes together does (bunny at
 // P = 4: 37.2 to 26.5).
 //
-// Free: every node not on a listed boundary triangle nor on a hull face (a
-// face of one tet), so the boundary, its curved nodes and the feature curves
-// stay bit for bit.
+// Free: the nodes of the tets whose max AMIPS is at least active_ratio x
+// the worst, or whose min scaled Jacobian is at most 1 / active_ratio x the
+// worst, and of `rings` layers of tets around them (the others weigh at most
+// active_ratio^p in E), except the nodes on a listed boundary triangle or a
+// hull face (a face of one tet): the boundary, its curved nodes and the
+// feature curves stay bit for bit.
 // Energy: E = sum over tets and over the order-2P lattice points of the
 // quality convention (highorder/amips_frames.hpp) of (AMIPS / A0)^p plus,
 // for the frames along the four corners' edges there, (J0 / sJ)^p: A0 the
@@ -47,6 +50,8 @@ struct CurvedDescentOptions {
   int window = 10;                   // iterations over which...
   double min_decrease = 0.01;        // ...E must fall by this fraction to go on
   double min_scaled_jacobian = 0.05; // floor (see above)
+  double active_ratio = 0.5;         // moves the tets within this ratio of the worst AMIPS or scaled J...
+  int rings = 1;                     // ...and these layers of tets around them
 };
 
 struct CurvedDescentStats {
