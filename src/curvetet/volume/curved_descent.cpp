@@ -17,6 +17,7 @@
 #include <deque>
 #include <limits>
 #include <map>
+#include <optional>
 #include <vector>
 
 namespace curvetet::volume {
@@ -325,14 +326,19 @@ CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& 
     }
     if (round == 0) s.free_nodes = free_nodes;
     if (free_nodes == 0) break;
-    Energy energy(m, free_index, free_nodes, o.power);
-    if (round == 0) s.energy_before = energy(nullptr) / energy.points();
+    std::optional<Energy> energy(std::in_place, m, free_index, free_nodes, o.power);
+    if (round == 0) s.energy_before = (*energy)(nullptr) / energy->points();
+    // Held nodes put back can invert a tet sharing them: then all start
+    // again from the input.
+    if (round > 0 && !std::isfinite((*energy)(nullptr))) {
+      m.nodes = original;
+      energy.emplace(m, free_index, free_nodes, o.power);
+    }
     double e = 0;
-    s.iterations += lbfgs(energy, o, e);
-    s.energy_after = e / energy.points();
-    // A tet that fails the acceptance keeps its nodes where they were, and
-    // the others are optimized again from where they were (restoring its
-    // nodes alone could invert the tets sharing them).
+    s.iterations += lbfgs(*energy, o, e);
+    s.energy_after = e / energy->points();
+    // A tet that fails the acceptance gets its nodes back and keeps them;
+    // the others go on from where they are.
     const std::vector<int> bad = failing(touched);
     if (bad.empty()) {
       touched.clear();
@@ -341,9 +347,12 @@ CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& 
     if (round + 1 == kRounds) break;
     for (int t : bad) {
       ++s.held_tets;
-      for (int i = 0; i < np; ++i) held[m.tets[t * np + i]] = 1;
+      for (int i = 0; i < np; ++i) {
+        const int n = m.tets[t * np + i];
+        held[n] = 1;
+        m.nodes[n] = original[n];
+      }
     }
-    m.nodes = original;
   }
   // Still failing after the last round: restore tets one by one, checking
   // their neighbours again (restoring every node gives the input back).

@@ -26,11 +26,11 @@
 // iterations.
 // Acceptance: every tet with a moved node is certified
 // (highorder::certify_tet; undecided = not positive) and measured on every
-// sample of the convention. While a tet is not positive, exceeds the input's
+// sample of the convention. A tet that is not positive, exceeds the input's
 // max AMIPS, or falls below min(min_scaled_jacobian, the input's min scaled
-// Jacobian) keeps its nodes where they were while the others are optimized
-// again from the start (up to 4 rounds; a node restored alone would bend
-// the other tets that share it); after the last round failing tets get
+// Jacobian) gets its nodes back and keeps them while the others go on from
+// where they are (from the input if putting the nodes back inverts a tet
+// sharing them; up to 4 rounds); after the last round failing tets get
 // their nodes back and their neighbours are checked again, until none is
 // left.
 // Restoring every node gives the input back, so the result is always
