@@ -12,10 +12,12 @@
 #include "curvetet/shell/star_invariants.hpp"
 #include "curvetet/highorder/element_map.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/highorder/quality.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 
 using namespace curvetet;
 using namespace curvetet::shell;
@@ -73,9 +75,10 @@ StarCandidate same_star(const Shell& s) {
   return c;
 }
 
-std::optional<Rejection> run(Shell& s, StarCandidate& c, const MiddleFit& fit, double epsilon) {
+std::optional<Rejection> run(Shell& s, StarCandidate& c, const MiddleFit& fit, double epsilon,
+                             double curved_quality = std::numeric_limits<double>::infinity()) {
   ShellEditor editor(s);
-  const StarContext ctx{editor, fit, epsilon, 100};
+  const StarContext ctx{editor, fit, epsilon, 100, std::numeric_limits<double>::infinity(), curved_quality};
   return check_candidate(default_star_invariants(), ctx, c);
 }
 
@@ -184,6 +187,24 @@ TEST(CurvedMiddle, ConstraintPointHoldsTheSurfaceWhereVerticesDoNot) {
   auto loose = same_star(s);
   EXPECT_FALSE(run(s, loose, sliding, 0.03).has_value());
   EXPECT_NEAR(loose.max_distance, std::sqrt(2.0) * 0.5 / 27, 1e-12);
+}
+
+// The sliding patch lies in the triangle's plane, but its parametrization
+// is distorted: its 2D MIPS exceeds the flat triangle's. CurvedMiddleQuality
+// rejects it under a bound between the two, not above its MIPS.
+TEST(CurvedMiddle, CurvedQualityRejectsADistortedPatch) {
+  const BubbleFit sliding(1.0, Vec3(1, 1, 0));
+  Shell s = bubble_prism(2, 0);
+  set_flat_middle(s, 3);
+  auto c = same_star(s);
+  ASSERT_FALSE(run(s, c, sliding, 1).has_value());
+  const double flat = highorder::triangle_max_mips(3, s.middle_nodes[0].data());
+  const double distorted = highorder::triangle_max_mips(3, c.middle_nodes[0].data());
+  ASSERT_GT(distorted, 1.1 * flat) << flat;
+  auto tight = same_star(s);
+  EXPECT_EQ(run(s, tight, sliding, 1, 0.5 * (flat + distorted)), Rejection::curved_quality);
+  auto loose = same_star(s);
+  EXPECT_FALSE(run(s, loose, sliding, 1, 1.01 * distorted).has_value());
 }
 
 TEST(CurvedMiddle, CertificateRejectsAnInvertedSlab) {

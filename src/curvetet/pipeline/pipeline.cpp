@@ -39,6 +39,10 @@ namespace {
 // drops (tests/fem/test_poisson_epsilon.cpp).
 constexpr double kMiddleQualityBound = 10;
 constexpr double kSlabQualityBound = 150;
+// Fitted middle patches: 2D MIPS up to 25 on their lattice (fertility's
+// worst tet sat under a patch of 42-77; lower bounds reshuffle smooth
+// models, docs/usable_elements.md).
+constexpr double kCurvedQualityBound = 25;
 constexpr double kFillCoarsenEnergy = 100;
 constexpr double kFillEdgeFactor = 4;
 
@@ -190,6 +194,7 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
     co.target_pillar = o.shell.extrusion.target_thickness;
     co.quality_bound = kMiddleQualityBound;
     co.slab_quality_bound = kSlabQualityBound;
+    co.curved_quality_bound = kCurvedQualityBound;
     co.thickness_ratio = o.thickness_ratio;
     co.singular_dot = o.shell.extrusion.singular_dot;
     co.debug_invariants = o.shell.debug_invariants;

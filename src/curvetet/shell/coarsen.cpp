@@ -351,7 +351,7 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   std::unique_ptr<ThicknessProbe> probe;
   std::vector<double> thickness;
   if (std::isfinite(o.thickness_ratio)) probe = std::make_unique<ThicknessProbe>(s.input);
-  StarContext ctx{editor, *fit, out.epsilon, o.quality_bound, o.slab_quality_bound};
+  StarContext ctx{editor, *fit, out.epsilon, o.quality_bound, o.slab_quality_bound, o.curved_quality_bound};
   if (probe) {
     ctx.thickness = &thickness;
     ctx.thickness_ratio = o.thickness_ratio;

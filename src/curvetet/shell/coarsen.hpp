@@ -42,6 +42,10 @@ struct CoarsenOptions {
   // lower slabs may reach max(old, this): in thin regions the shell is thin,
   // and long faces there make flat output tets.
   double slab_quality_bound = std::numeric_limits<double>::infinity();
+  // 2D MIPS of new fitted (curved) middle patches, on their order-2k
+  // lattice, may reach max(old, this): a patch distorted far beyond its
+  // flat triangle caps the quality of every tet on it.
+  double curved_quality_bound = std::numeric_limits<double>::infinity();
   // New middle triangles' longest edge over the solid's thickness under
   // their thinnest corner (local_thickness.hpp) may reach max(old, this):
   // a face much longer than the solid is thick leaves only flat tets.

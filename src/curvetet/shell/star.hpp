@@ -39,6 +39,7 @@ enum class Rejection : std::uint8_t {
   section,           // invariant 2 on the new prisms
   caps_intersection, // invariant 3: new caps against all caps
   curved_fit,        // the middle-surface fit of the new triangles failed
+  curved_quality,    // fitted middle patches more distorted than allowed (ranking rule)
   distance,          // a constraint point would map farther than epsilon
   surface_distance,  // a point of a new middle patch may lie farther than
                      // epsilon from the input (surface_distance.hpp)

@@ -42,6 +42,7 @@ std::string_view to_string(Rejection r) {
     case Rejection::section: return "section";
     case Rejection::caps_intersection: return "caps_intersection";
     case Rejection::curved_fit: return "curved_fit";
+    case Rejection::curved_quality: return "curved_quality";
     case Rejection::distance: return "distance";
     case Rejection::surface_distance: return "surface_distance";
     case Rejection::feature: return "feature";
@@ -330,6 +331,30 @@ class CurvedFit final : public StarInvariant {
   bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override { return ctx.fit.fit_and_check(ctx.editor, c, ctx.epsilon); }
 };
 
+// MiddleQuality on the fitted patches, at every point of their lattice: a
+// fit can distort a patch's parametrization far beyond its flat triangle's
+// (the fibers it follows converge), and every output tet on that face
+// inherits the distortion whatever its other nodes do. Its bound is looser
+// than MiddleQuality's: at 10 it reshuffles the coarsening of smooth models
+// into ear tets at ridges (docs/usable_elements.md, session 19).
+class CurvedMiddleQuality final : public StarInvariant {
+ public:
+  Rejection reason() const override { return Rejection::curved_quality; }
+  bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
+    if (c.middle_nodes.empty() || !std::isfinite(ctx.curved_quality_bound)) return true;
+    const auto& s = ctx.editor.shell();
+    double old_max = 0;
+    for (int f : c.removed)
+      old_max = std::max(old_max, s.middle_nodes.empty() || s.middle_nodes[f].empty()
+                                      ? mips(s.middle[s.faces[f][0]], s.middle[s.faces[f][1]], s.middle[s.faces[f][2]])
+                                      : highorder::triangle_max_mips(s.middle_degree, s.middle_nodes[f].data()));
+    const double bound = std::max(old_max, ctx.curved_quality_bound);
+    for (const auto& nodes : c.middle_nodes)
+      if (!nodes.empty() && !(highorder::triangle_max_mips(ctx.fit.degree(), nodes.data()) <= bound)) return false;
+    return true;
+  }
+};
+
 // Π of every constraint point of the removed prisms under the new prisms
 // (fills c.images). A point must land in a new prism tracking its face.
 class MapImages final : public StarInvariant {
@@ -420,6 +445,7 @@ InvariantList default_star_invariants() {
   l.push_back(std::make_unique<CapsIntersection>());
   l.push_back(std::make_unique<MapImages>());
   l.push_back(std::make_unique<CurvedFit>());
+  l.push_back(std::make_unique<CurvedMiddleQuality>());
   l.push_back(std::make_unique<Distance>());
   l.push_back(std::make_unique<SurfaceDistance>());
   l.push_back(make_feature_invariant());

@@ -32,6 +32,8 @@
 //                     chain vertices land exactly on their edge
 //  CurvedFit          MiddleFit::fit_and_check (no-op for a linear middle;
 //                     the curved fit uses c.images as samples)
+//  CurvedMiddleQuality (ranking rule) max MIPS over each fitted patch's
+//                     order-2k lattice <= max(old, curved_quality_bound)
 //  Distance           ||p - middle(Π(β(p)))|| < epsilon for those points, the
 //                     middle evaluated through MiddleFit::evaluate
 //  SurfaceDistance    the other direction: a derived bound on the distance
@@ -57,6 +59,7 @@ struct StarContext {
   double epsilon;        // absolute distance bound
   double quality_bound;  // MIPS bound of the ranking rule
   double slab_quality_bound = std::numeric_limits<double>::infinity(); // AMIPS bound of the slab rule
+  double curved_quality_bound = std::numeric_limits<double>::infinity(); // MIPS bound of fitted patches
   const std::vector<double>* thickness = nullptr; // per shell vertex (local_thickness.hpp); null: no rule
   double thickness_ratio = std::numeric_limits<double>::infinity(); // edge / thickness bound of that rule
 };
