@@ -1,7 +1,8 @@
 // AmipsFrames: the frame form gives the max AMIPS and min scaled Jacobian
 // of the quality convention (every sample: tet_quality's; the order-2P
 // lattice first, the smoothing's trials), and a rank-one update equals
-// recomputing the frames from moved nodes.
+// recomputing the frames from moved nodes; node gradients are the chain
+// rule through the frames.
 #include "curvetet/highorder/amips_frames.hpp"
 #include "curvetet/highorder/bernstein.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
@@ -146,4 +147,35 @@ TEST(AmipsFrames, LatticeAndTheRestMakeEverySample) {
     if (n < f.num_points())
       EXPECT_NE(f.max_amips(k.data(), nullptr, zero, inf, -1, n), f.max_amips(k.data(), nullptr, zero, inf, n));
   }
+}
+
+// node_gradients is the chain rule through the frames: for f = sum over the
+// lattice of |K_q|^2 (df/dK_q = 2 K_q), central differences of f by each
+// coordinate of a few nodes agree with it.
+TEST(AmipsFrames, NodeGradientsMatchFiniteDifferences) {
+  const int p = 4;
+  const AmipsFrames& f = amips_frames(p);
+  const int n = f.num_lattice_points();
+  const auto nodes = mapped_tet(p, unit_tet(), gentle_bend);
+  const auto energy = [&](const std::vector<Eigen::Vector3d>& x) {
+    std::vector<Eigen::Matrix3d> k(n);
+    f.frames(x.data(), k.data(), n);
+    double e = 0;
+    for (const auto& m : k) e += m.squaredNorm();
+    return e;
+  };
+  std::vector<Eigen::Matrix3d> k(n), dk(n);
+  f.frames(nodes.data(), k.data(), n);
+  for (int q = 0; q < n; ++q) dk[q] = 2 * k[q];
+  std::vector<Eigen::Vector3d> grad(f.num_nodes());
+  f.node_gradients(dk.data(), grad.data(), n);
+  const double h = 1e-6;
+  for (int local : {0, 7, 20, 34})
+    for (int axis = 0; axis < 3; ++axis) {
+      auto plus = nodes, minus = nodes;
+      plus[local][axis] += h;
+      minus[local][axis] -= h;
+      const double fd = (energy(plus) - energy(minus)) / (2 * h);
+      EXPECT_NEAR(grad[local][axis], fd, 1e-5 * std::max(1.0, std::abs(fd))) << "node " << local << " axis " << axis;
+    }
 }
