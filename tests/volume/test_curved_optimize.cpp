@@ -76,6 +76,7 @@ TEST(CurvedOptimize, ScaledJacobianSweepRaisesTheMinWithoutRaisingTheMaxAmips) {
   volume::CurvedOptimizeOptions o;
   o.min_amips = std::numeric_limits<double>::infinity(); // no AMIPS sweep: only the scaled-Jacobian one
   o.min_scaled_jacobian = 0.5;
+  o.raise_scaled_jacobian_below = 0.5;
   const auto stats = volume::optimize_curved(m, o);
   EXPECT_GT(stats.scaled_jacobian_moves, 0);
   EXPECT_EQ(stats.scaled_jacobian_moves, stats.vertex_moves + stats.node_moves);

@@ -63,6 +63,8 @@ class Energy {
       : m_(m), free_(free_index), num_free_(num_free), power_(power), frames_(highorder::amips_frames(m.order)),
         points_(frames_.num_lattice_points()), np_(m.tet_nodes()), term_(m.num_tets()),
         grad_(static_cast<std::size_t>(m.num_tets()) * np_) {
+    for (int c = 0; c < 4; ++c)
+      for (int i = 0; i < 3; ++i) corner_edges_[c][i] = frames_.reference_to_regular() * kCornerEdges[c][i];
     for (int t = 0; t < m.num_tets(); ++t)
       for (int i = 0; i < np_; ++i)
         if (free_[m.tets[t * np_ + i]] >= 0) {
@@ -126,35 +128,45 @@ class Energy {
   // The terms of one point with frame K: (AMIPS / A0)^p and, for each
   // corner frame, (sJ0 / scaled Jacobian)^p (AMIPS alone lets a corner
   // frame's angle close while the frame's shape improves); with dk, their
-  // derivative by K. Logarithms make the scaled Jacobian's simple:
-  // d log sJ / dJ = J^-T - sum over its edges e of (J e) e^T / |J e|^2.
+  // derivative by K. With J = K W and u_i = W e_i for the corner's edges
+  // e_i, sJ = sqrt(2) det J / prod |K u_i|, so its term is r^(p/2) with
+  // r = sJ0^2 prod |K u_i|^2 / (2 det J^2), and
+  // d log sJ / dK = K^-T - sum_i (K u_i) u_i^T / |K u_i|^2.
   double point_energy(const Mat3& k, Mat3* dk) const {
     const double det = k.determinant();
     if (!(det > 0)) return kInf;
     const double det23 = std::cbrt(det * det), norm2 = k.squaredNorm(), a = norm2 / det23;
-    const double amips_term = std::pow(a / amips_ref_, power_);
+    const double amips_term = power_of(a / amips_ref_, power_);
     double e = amips_term;
-    if (dk) *dk = (power_ * amips_term / a) / det23 * (2 * k - (2.0 / 3.0) * norm2 * k.inverse().transpose());
-    const Mat3& w = frames_.reference_to_regular();
-    const Mat3 j = k * w;
-    const double log_det = std::log(det * w.determinant());
-    Mat3 dj = Mat3::Zero();
-    for (const auto& corner : kCornerEdges) {
-      double log_sj = std::log(std::sqrt(2.0)) + log_det;
-      Vec3 je[3];
+    const Mat3 k_inv_t = k.inverse().transpose();
+    if (dk) *dk = (power_ * amips_term / a) / det23 * (2 * k - (2.0 / 3.0) * norm2 * k_inv_t);
+    const double det_j = det * frames_.reference_to_regular().determinant();
+    const double scale = sj_ref_ * sj_ref_ / (2 * det_j * det_j);
+    for (const auto& u : corner_edges_) {
+      Vec3 ku[3];
+      double r = scale;
       for (int i = 0; i < 3; ++i) {
-        je[i] = j * corner[i];
-        log_sj -= 0.5 * std::log(je[i].squaredNorm());
+        ku[i] = k * u[i];
+        r *= ku[i].squaredNorm();
       }
-      const double term = std::exp(power_ * (std::log(sj_ref_) - log_sj));
+      const double term = power_of(r, 0.5 * power_);
       e += term;
       if (!dk) continue;
-      Mat3 dlog = j.inverse().transpose();
-      for (int i = 0; i < 3; ++i) dlog -= je[i] * corner[i].transpose() / je[i].squaredNorm();
-      dj -= power_ * term * dlog;
+      Mat3 dlog = k_inv_t;
+      for (int i = 0; i < 3; ++i) dlog -= ku[i] * u[i].transpose() / ku[i].squaredNorm();
+      *dk -= power_ * term * dlog;
     }
-    if (dk) *dk += dj * w.transpose();
     return e;
+  }
+
+  // x^p, by squarings for the small integer powers the energy uses.
+  static double power_of(double x, double p) {
+    if (p == 4) return (x * x) * (x * x);
+    if (p == 8) {
+      const double x4 = (x * x) * (x * x);
+      return x4 * x4;
+    }
+    return std::pow(x, p);
   }
 
   static double amips(const Mat3& k) {
@@ -188,6 +200,7 @@ class Energy {
   std::vector<int> tets_; // tets with a free node
   std::vector<double> term_;
   std::vector<Vec3> grad_; // per tet and local node
+  std::array<std::array<Vec3, 3>, 4> corner_edges_; // W e for the reference tet's corner edges e
 };
 
 // Minimizes e from the mesh's current free nodes (left at the best point

@@ -102,7 +102,7 @@ class CurvedOptimizer {
   const std::vector<double>& scaled_jacobians() const { return sj_; }
 
   // One sweep over the bad tets, worst first: max AMIPS >= threshold, or
-  // min scaled Jacobian below options.min_scaled_jacobian (the worst
+  // min scaled Jacobian below options.raise_scaled_jacobian_below (the worst
   // options.max_bad_tets of them). Every node of a
   // bad tet is a candidate move, once per sweep; the candidates go in
   // batches of moves with disjoint touched tets, which are tried in
@@ -112,7 +112,7 @@ class CurvedOptimizer {
   // A candidate that conflicts with the batch waits for the next one.
   void sweep(Goal goal, double threshold, CurvedOptimizeStats& stats) {
     const auto is_bad = [&](int t) {
-      return goal == Goal::amips ? amips_[t] >= threshold : sj_[t] < o_.min_scaled_jacobian;
+      return goal == Goal::amips ? amips_[t] >= threshold : sj_[t] < o_.raise_scaled_jacobian_below;
     };
     const auto badness = [&](int t) { return goal == Goal::amips ? amips_[t] : -sj_[t]; };
     sweep_max_amips_ = *std::max_element(amips_.begin(), amips_.end());

@@ -42,8 +42,9 @@ struct CurvedOptimizeOptions {
   double bad_fraction = 0.25;   // a sweep visits tets whose max AMIPS >= this quantile from the top...
   std::size_t max_bad_tets = 8192; // ...the worst this many at most (both goals: a big mesh's sweep stays bounded)...
   double min_amips = 12.0;      // ...and above this value (regular tet: 3)
-  double min_scaled_jacobian = 0.05; // a sweep also raises tets below this min scaled Jacobian, and no move
-                                     // takes a tet below it (or below its own value when already lower)
+  double min_scaled_jacobian = 0.05; // no move takes a tet below this min scaled Jacobian (or below its own
+                                     // value when already lower)...
+  double raise_scaled_jacobian_below = 0.05; // ...and a sweep raises the tets below this one
   int line_search_steps = 6;    // step halvings below the touched tets' shortest edge (steps start at the longest)
   std::size_t frame_cache_bytes = std::size_t(1) << 30; // memory for cached per-tet frames (speed only)
   bool move_vertices = true;

@@ -49,6 +49,10 @@ struct CurvedRemeshOptions {
   CurvedOptimizeOptions smoothing = [] {
     CurvedOptimizeOptions o;
     o.bad_fraction = 0.1; // the topology passes handle the bulk; smoothing polishes the worst
+    // The descent raises every low scaled Jacobian at once; sweeping each
+    // tet below the floor (a third of them on the scans) cost most of the
+    // smoothing's time for no better result.
+    o.raise_scaled_jacobian_below = 0.02;
     return o;
   }();
   CurvedDescentOptions descent;

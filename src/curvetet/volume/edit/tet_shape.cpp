@@ -1,5 +1,6 @@
 #include "curvetet/volume/edit/tet_shape.hpp"
 
+#include "curvetet/highorder/amips_frames.hpp"
 #include "curvetet/highorder/bernstein.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
@@ -14,20 +15,15 @@
 namespace curvetet::volume::edit {
 namespace {
 
-// Lagrange gradients (nodes x 3) at the convention's samples, the four
-// corners first.
-const std::vector<Eigen::MatrixXd>& sample_gradients(int order) {
-  static std::unique_ptr<std::vector<Eigen::MatrixXd>> cache[highorder::kMaxOrder + 1];
+// Lagrange gradients (nodes x 3) at the reference tet's four corners.
+const std::array<Eigen::MatrixXd, 4>& corner_gradients(int order) {
+  static std::unique_ptr<std::array<Eigen::MatrixXd, 4>> cache[highorder::kMaxOrder + 1];
   static std::once_flag once[highorder::kMaxOrder + 1];
   std::call_once(once[order], [order] {
-    auto g = std::make_unique<std::vector<Eigen::MatrixXd>>();
-    std::vector<Eigen::Vector3d> samples = highorder::quality_samples(order);
-    const auto is_corner = [](const Eigen::Vector3d& p) {
-      const double s = p.sum();
-      return (p.array() == 0).count() == 3 || ((p.array() == 0).count() == 2 && s == 1);
-    };
-    std::stable_partition(samples.begin(), samples.end(), is_corner);
-    for (const auto& p : samples) g->push_back(highorder::lagrange_gradients(3, order, p.data()));
+    auto g = std::make_unique<std::array<Eigen::MatrixXd, 4>>();
+    const Eigen::Vector3d corners[4] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                                        Eigen::Vector3d::UnitZ()};
+    for (int c = 0; c < 4; ++c) (*g)[c] = highorder::lagrange_gradients(3, order, corners[c].data());
     cache[order] = std::move(g);
   });
   return *cache[order];
@@ -45,25 +41,25 @@ std::optional<TetShape> tet_shape(int order, const Eigen::Vector3d* x, double bo
     const Eigen::Vector3d affine = w[0] * x[0] + w[1] * x[1] + w[2] * x[2] + w[3] * x[3];
     straight = (x[i] - affine).cwiseAbs().maxCoeff() <= 1e-12 * scale;
   }
-  const auto at = [&](const Eigen::Matrix3d& j, TetShape& s) {
-    const double e = highorder::amips(j);
-    if (!(e < bound)) return false;
-    s.max_amips = std::max(s.max_amips, e);
-    s.min_scaled_jacobian = std::min(s.min_scaled_jacobian, highorder::scaled_jacobian(j));
-    return true;
-  };
-  TetShape s{0, std::numeric_limits<double>::infinity()};
   if (straight) {
     Eigen::Matrix3d j;
     j << x[1] - x[0], x[2] - x[0], x[3] - x[0];
-    if (!at(j, s)) return std::nullopt;
-    return s;
+    const double e = highorder::amips(j);
+    if (!(e < bound)) return std::nullopt;
+    return TetShape{e, highorder::scaled_jacobian(j)};
   }
-  Eigen::Matrix<double, 3, Eigen::Dynamic> nodes(3, n);
-  for (int i = 0; i < n; ++i) nodes.col(i) = x[i];
-  for (const Eigen::MatrixXd& g : sample_gradients(order))
-    if (!at(nodes.lazyProduct(g), s)) return std::nullopt;
-  return s;
+  // Most candidates fail at a corner: those first, then every sample at
+  // once (one product for all frames).
+  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> nodes(x[0].data(), 3, n);
+  for (const Eigen::MatrixXd& g : corner_gradients(order))
+    if (!(highorder::amips(nodes * g) < bound)) return std::nullopt;
+  const highorder::AmipsFrames& table = highorder::amips_frames(order);
+  thread_local std::vector<Eigen::Matrix3d> frames;
+  frames.resize(table.num_points());
+  table.frames(x, frames.data());
+  const double worst = table.max_amips(frames.data(), nullptr, Eigen::Vector3d::Zero(), bound);
+  if (!(worst < bound)) return std::nullopt;
+  return TetShape{worst, table.min_scaled_jacobian(frames.data(), nullptr, Eigen::Vector3d::Zero())};
 }
 
 } // namespace curvetet::volume::edit
