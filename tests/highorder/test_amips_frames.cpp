@@ -137,16 +137,51 @@ TEST(AmipsFrames, LatticeAndTheRestMakeEverySample) {
     const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
     const double inf = std::numeric_limits<double>::infinity();
     const int n = f.num_lattice_points();
-    if (p != 3) ASSERT_LT(n, f.num_points()) << "order " << p; // at P = 3 both lattices are of order 6
+    if (p != 3) { // at P = 3 both lattices are of order 6
+      ASSERT_LT(n, f.num_points()) << "order " << p;
+    }
     EXPECT_EQ(std::max(f.max_amips(k.data(), nullptr, zero, inf, n), f.max_amips(k.data(), nullptr, zero, inf, -1, n)),
               f.max_amips(k.data(), nullptr, zero));
     EXPECT_EQ(std::min(f.min_scaled_jacobian(k.data(), nullptr, zero, -inf, n),
                        f.min_scaled_jacobian(k.data(), nullptr, zero, -inf, -1, n)),
               f.min_scaled_jacobian(k.data(), nullptr, zero));
     // The rest alone differs from the lattice alone (else the split is moot).
-    if (n < f.num_points())
+    if (n < f.num_points()) {
       EXPECT_NE(f.max_amips(k.data(), nullptr, zero, inf, -1, n), f.max_amips(k.data(), nullptr, zero, inf, n));
+    }
   }
+}
+
+// The smoothing's descent directions: at the worst point of a bent tet,
+// the gradients of AMIPS and of the scaled Jacobian along a node move
+// agree with central differences of the measures themselves.
+TEST(AmipsFrames, PointGradientsMatchFiniteDifferences) {
+  const int p = 4;
+  const AmipsFrames& f = amips_frames(p);
+  const auto nodes = mapped_tet(p, unit_tet(), gentle_bend);
+  std::vector<Eigen::Matrix3d> k(f.num_points());
+  f.frames(nodes.data(), k.data());
+  std::vector<Eigen::Vector3d> c(f.num_points(), Eigen::Vector3d::Zero());
+  f.add_direction(7, 1.0, c.data()); // an edge node
+  f.add_direction(1, 0.5, c.data()); // and half of a corner
+  const int n = f.num_lattice_points();
+  double worst_amips = 0, worst_sj = 0;
+  const int qa = f.worst_amips_point(k.data(), n, &worst_amips), qs = f.worst_scaled_jacobian_point(k.data(), n, &worst_sj);
+  ASSERT_GE(qa, 0);
+  ASSERT_GE(qs, 0);
+  EXPECT_EQ(worst_amips, f.max_amips(k.data(), nullptr, Eigen::Vector3d::Zero(), std::numeric_limits<double>::infinity(), n));
+  EXPECT_EQ(worst_sj, f.min_scaled_jacobian(k.data(), nullptr, Eigen::Vector3d::Zero(), -std::numeric_limits<double>::infinity(), n));
+  const Eigen::Vector3d ga = f.amips_gradient(k[qa], c[qa]), gs = f.scaled_jacobian_gradient(k[qs], c[qs]);
+  const double h = 1e-6;
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3d d = h * Eigen::Vector3d::Unit(a);
+    const auto amips_at = [&](const Eigen::Vector3d& x) { return f.max_amips(&k[qa], &c[qa], x, std::numeric_limits<double>::infinity(), 1); };
+    const auto sj_at = [&](const Eigen::Vector3d& x) { return f.min_scaled_jacobian(&k[qs], &c[qs], x, -std::numeric_limits<double>::infinity(), 1); };
+    EXPECT_NEAR(ga[a], (amips_at(d) - amips_at(-d)) / (2 * h), 1e-6 * (1 + ga.norm())) << "axis " << a;
+    EXPECT_NEAR(gs[a], (sj_at(d) - sj_at(-d)) / (2 * h), 1e-6 * (1 + gs.norm())) << "axis " << a;
+  }
+  EXPECT_GT(ga.norm(), 0);
+  EXPECT_GT(gs.norm(), 0);
 }
 
 // node_gradients is the chain rule through the frames: for f = sum over the

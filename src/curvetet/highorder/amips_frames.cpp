@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -75,6 +76,68 @@ double AmipsFrames::min_scaled_jacobian(const Eigen::Matrix3d* frames, const Eig
     worst = std::min(worst, scaled_jacobian(k * w_));
   }
   return worst;
+}
+
+int AmipsFrames::worst_amips_point(const Eigen::Matrix3d* frames, int points, double* value) const {
+  const int n = points < 0 ? points_ : std::min(points, points_);
+  int worst = -1;
+  *value = -std::numeric_limits<double>::infinity();
+  for (int q = 0; q < n; ++q) {
+    const double a = max_amips(frames + q, nullptr, Eigen::Vector3d::Zero(), std::numeric_limits<double>::infinity(), 1);
+    if (a > *value) {
+      *value = a;
+      worst = q;
+    }
+  }
+  return worst;
+}
+
+int AmipsFrames::worst_scaled_jacobian_point(const Eigen::Matrix3d* frames, int points, double* value) const {
+  const int n = points < 0 ? points_ : std::min(points, points_);
+  int worst = -1;
+  *value = std::numeric_limits<double>::infinity();
+  for (int q = 0; q < n; ++q) {
+    const double sj = scaled_jacobian(frames[q] * w_);
+    if (sj < *value) {
+      *value = sj;
+      worst = q;
+    }
+  }
+  return worst;
+}
+
+Eigen::Vector3d AmipsFrames::amips_gradient(const Eigen::Matrix3d& k, const Eigen::Vector3d& c) const {
+  // AMIPS = |K|^2 det^(-2/3): dA/dK = (2 K - (2/3) |K|^2 K^-T) det^(-2/3).
+  const double det = k.determinant(), norm2 = k.squaredNorm();
+  const Eigen::Matrix3d dk = (2 * k - (2.0 / 3.0) * norm2 * k.inverse().transpose()) / std::cbrt(det * det);
+  return dk * c;
+}
+
+Eigen::Vector3d AmipsFrames::scaled_jacobian_gradient(const Eigen::Matrix3d& k, const Eigen::Vector3d& c) const {
+  // The corner frame that decides (quality.cpp's scaled_jacobian: the
+  // largest product of squared edge lengths), with u its reference edges:
+  // d log sJ / dK = K^-T - sum_u (K W u)(W u)^T / |K W u|^2.
+  static const Eigen::Vector3d e1 = Eigen::Vector3d::UnitX(), e2 = Eigen::Vector3d::UnitY(),
+                               e3 = Eigen::Vector3d::UnitZ();
+  static const std::array<std::array<Eigen::Vector3d, 3>, 4> corner_edges = {
+      {{e1, e2, e3}, {e1, e2 - e1, e3 - e1}, {e2, e2 - e1, e3 - e2}, {e3, e3 - e1, e3 - e2}}};
+  const Eigen::Matrix3d j = k * w_;
+  double largest = -1;
+  int corner = 0;
+  for (int i = 0; i < 4; ++i) {
+    double f = 1;
+    for (const auto& u : corner_edges[i]) f *= (j * u).squaredNorm();
+    if (f > largest) {
+      largest = f;
+      corner = i;
+    }
+  }
+  Eigen::Matrix3d dlog = k.inverse().transpose();
+  for (const auto& u : corner_edges[corner]) {
+    const Eigen::Vector3d wu = w_ * u, kwu = k * wu;
+    dlog -= kwu * wu.transpose() / kwu.squaredNorm();
+  }
+  return scaled_jacobian(j) * (dlog * c);
 }
 
 const AmipsFrames& amips_frames(int order) {

@@ -54,6 +54,17 @@ class AmipsFrames {
                              double floor = -std::numeric_limits<double>::infinity(), int points = -1,
                              int from = 0) const;
 
+  // Where the measures above are worst among the first `points` points
+  // (-1: all): the index of the largest AMIPS / smallest scaled Jacobian,
+  // its value in *value.
+  int worst_amips_point(const Eigen::Matrix3d* frames, int points, double* value) const;
+  int worst_scaled_jacobian_point(const Eigen::Matrix3d* frames, int points, double* value) const;
+  // d/dd of AMIPS(K + d c^T) and of the scaled Jacobian of (K + d c^T) W at
+  // d = 0 (K positive): the directions in which a move of weighted nodes
+  // changes one point's measure fastest.
+  Eigen::Vector3d amips_gradient(const Eigen::Matrix3d& k, const Eigen::Vector3d& c) const;
+  Eigen::Vector3d scaled_jacobian_gradient(const Eigen::Matrix3d& k, const Eigen::Vector3d& c) const;
+
  private:
   int points_ = 0, lattice_points_ = 0, nodes_ = 0;
   Eigen::Matrix3d w_;  // reference tet -> regular tet

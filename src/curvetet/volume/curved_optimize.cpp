@@ -393,19 +393,28 @@ class CurvedOptimizer {
       const int t = mv.tets[k];
       if (goal == Goal::amips ? amips_[t] >= 0.5 * amips0 : sj_[t] < o_.min_scaled_jacobian) active.push_back(k);
     }
-    const auto objective = [&](const Vec3& d) {
-      return goal == Goal::amips ? trial_amips(x, active, d) : -trial_scaled_jacobian(x, active, d);
-    };
-
-    // Descent direction of the objective, central differences.
-    const double fd = 1e-5 * h;
-    Vec3 g = Vec3::Zero();
-    for (int a = 0; a < 3; ++a) {
-      const Vec3 e = fd * Vec3::Unit(a);
-      const double plus = objective(e), minus = objective(-e);
-      if (std::isfinite(plus) && std::isfinite(minus)) g[a] = (plus - minus) / (2 * fd);
+    // Descent direction: the gradient of the goal's measure at its worst
+    // point among the active tets (the max's gradient where that point is
+    // unique).
+    const int lattice_points = table_.num_lattice_points();
+    int worst_k = -1, worst_q = -1;
+    double worst = goal == Goal::amips ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+    for (int k : active) {
+      double value = 0;
+      const int q = goal == Goal::amips ? table_.worst_amips_point(x.frames[k], lattice_points, &value)
+                                        : table_.worst_scaled_jacobian_point(x.frames[k], lattice_points, &value);
+      if (goal == Goal::amips ? value > worst : value < worst) {
+        worst = value;
+        worst_k = k;
+        worst_q = q;
+      }
     }
-    if (!(g.norm() > 0)) return Outcome::rejected_quality;
+    if (worst_k < 0 || !std::isfinite(worst)) return Outcome::rejected_quality;
+    const Eigen::Matrix3d& k_worst = x.frames[worst_k][worst_q];
+    const Vec3& c_worst = x.directions[worst_k * q_ + worst_q];
+    const Vec3 g = goal == Goal::amips ? table_.amips_gradient(k_worst, c_worst)
+                                       : Vec3(-table_.scaled_jacobian_gradient(k_worst, c_worst));
+    if (!(g.norm() > 0) || !g.allFinite()) return Outcome::rejected_quality;
     const Vec3 dir = -g.normalized();
 
     // AMIPS moves must lower the max and may not take a tet below the scaled

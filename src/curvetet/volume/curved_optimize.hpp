@@ -15,9 +15,9 @@
 //    boundary triangle moves by d; tried only when the worst tet it touches
 //    is curved (bending a straight tet raises its max AMIPS).
 // Each pass sweeps the tets of high max AMIPS, then those of low min scaled
-// Jacobian. d is a descent direction of the sweep's goal over the touched
-// tets (central finite differences), tried with halving steps from a quarter
-// of the longest touched edge; for a vertex move where none of those steps
+// Jacobian. d is the descent direction of the sweep's measure at its worst
+// point among the touched tets near the worst (AmipsFrames' gradients),
+// tried with halving steps from a quarter of the longest touched edge; for a vertex move where none of those steps
 // passes, the best of the 26 compass directions at the same steps. Steps are
 // tried on the order-2P lattice; a move is kept only if it improves the goal
 // without hurting the other measure (see CurvedOptimizeOptions) at every
