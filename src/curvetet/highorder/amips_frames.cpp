@@ -22,6 +22,10 @@ AmipsFrames::AmipsFrames(int order) {
   w_.col(1) << 0.5, std::sqrt(3.0) / 2, 0;
   w_.col(2) << 0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0);
   const Eigen::Matrix3d w_inv = w_.inverse();
+  const Eigen::Vector3d e1 = Eigen::Vector3d::UnitX(), e2 = Eigen::Vector3d::UnitY(), e3 = Eigen::Vector3d::UnitZ();
+  const CornerEdges reference = {{{e1, e2, e3}, {e1, e2 - e1, e3 - e1}, {e2, e2 - e1, e3 - e2}, {e3, e3 - e1, e3 - e2}}};
+  for (int c = 0; c < 4; ++c)
+    for (int i = 0; i < 3; ++i) corner_edges_[c][i] = w_ * reference[c][i];
   nodes_ = tet_node_count(order);
   const std::vector<Eigen::Vector3d>& xis = quality_samples(order);
   points_ = static_cast<int>(xis.size());
@@ -115,26 +119,23 @@ Eigen::Vector3d AmipsFrames::amips_gradient(const Eigen::Matrix3d& k, const Eige
 
 Eigen::Vector3d AmipsFrames::scaled_jacobian_gradient(const Eigen::Matrix3d& k, const Eigen::Vector3d& c) const {
   // The corner frame that decides (quality.cpp's scaled_jacobian: the
-  // largest product of squared edge lengths), with u its reference edges:
+  // largest product of squared edge lengths), with u its reference edges
+  // (corner_edges() holds W u):
   // d log sJ / dK = K^-T - sum_u (K W u)(W u)^T / |K W u|^2.
-  static const Eigen::Vector3d e1 = Eigen::Vector3d::UnitX(), e2 = Eigen::Vector3d::UnitY(),
-                               e3 = Eigen::Vector3d::UnitZ();
-  static const std::array<std::array<Eigen::Vector3d, 3>, 4> corner_edges = {
-      {{e1, e2, e3}, {e1, e2 - e1, e3 - e1}, {e2, e2 - e1, e3 - e2}, {e3, e3 - e1, e3 - e2}}};
   const Eigen::Matrix3d j = k * w_;
   double largest = -1;
   int corner = 0;
   for (int i = 0; i < 4; ++i) {
     double f = 1;
-    for (const auto& u : corner_edges[i]) f *= (j * u).squaredNorm();
+    for (const auto& wu : corner_edges_[i]) f *= (k * wu).squaredNorm();
     if (f > largest) {
       largest = f;
       corner = i;
     }
   }
   Eigen::Matrix3d dlog = k.inverse().transpose();
-  for (const auto& u : corner_edges[corner]) {
-    const Eigen::Vector3d wu = w_ * u, kwu = k * wu;
+  for (const auto& wu : corner_edges_[corner]) {
+    const Eigen::Vector3d kwu = k * wu;
     dlog -= kwu * wu.transpose() / kwu.squaredNorm();
   }
   return scaled_jacobian(j) * (dlog * c);

@@ -18,6 +18,7 @@
 // all points. Both equal tet_quality's.
 #include <Eigen/Core>
 
+#include <array>
 #include <limits>
 #include <vector>
 
@@ -31,6 +32,10 @@ class AmipsFrames {
   int num_nodes() const { return nodes_; }
   // W, the reference tet -> the regular tet of unit edge (J = K W).
   const Eigen::Matrix3d& reference_to_regular() const { return w_; }
+  // W u for the reference tet's three edges u leaving each corner (up to
+  // sign): the edges of the corner frames the scaled Jacobian compares.
+  using CornerEdges = std::array<std::array<Eigen::Vector3d, 3>, 4>;
+  const CornerEdges& corner_edges() const { return corner_edges_; }
 
   // frames[q] = K_q for q < points (-1: num_points()); nodes in internal
   // (Gmsh) order.
@@ -68,6 +73,7 @@ class AmipsFrames {
  private:
   int points_ = 0, lattice_points_ = 0, nodes_ = 0;
   Eigen::Matrix3d w_;  // reference tet -> regular tet
+  CornerEdges corner_edges_;
   Eigen::MatrixXd h_;  // nodes_ x (3 points_): row l, columns 3q..3q+2 = h_{l,q}^T
 };
 

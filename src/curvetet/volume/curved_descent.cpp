@@ -26,11 +26,6 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// The reference tet's edges leaving each corner.
-const std::array<std::array<Vec3, 3>, 4> kCornerEdges = {{{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)},
-                                                           {Vec3(-1, 0, 0), Vec3(-1, 1, 0), Vec3(-1, 0, 1)},
-                                                           {Vec3(0, -1, 0), Vec3(1, -1, 0), Vec3(0, -1, 1)},
-                                                           {Vec3(0, 0, -1), Vec3(1, 0, -1), Vec3(0, 1, -1)}}};
 constexpr int kRounds = 4; // optimizations, each holding the tets the previous one could not keep
 
 // Nodes that never move: those of listed boundary triangles and of hull
@@ -63,8 +58,6 @@ class Energy {
       : m_(m), free_(free_index), num_free_(num_free), power_(power), frames_(highorder::amips_frames(m.order)),
         points_(frames_.num_lattice_points()), np_(m.tet_nodes()), term_(m.num_tets()),
         grad_(static_cast<std::size_t>(m.num_tets()) * np_) {
-    for (int c = 0; c < 4; ++c)
-      for (int i = 0; i < 3; ++i) corner_edges_[c][i] = frames_.reference_to_regular() * kCornerEdges[c][i];
     for (int t = 0; t < m.num_tets(); ++t)
       for (int i = 0; i < np_; ++i)
         if (free_[m.tets[t * np_ + i]] >= 0) {
@@ -142,7 +135,7 @@ class Energy {
     if (dk) *dk = (power_ * amips_term / a) / det23 * (2 * k - (2.0 / 3.0) * norm2 * k_inv_t);
     const double det_j = det * frames_.reference_to_regular().determinant();
     const double scale = sj_ref_ * sj_ref_ / (2 * det_j * det_j);
-    for (const auto& u : corner_edges_) {
+    for (const auto& u : frames_.corner_edges()) {
       Vec3 ku[3];
       double r = scale;
       for (int i = 0; i < 3; ++i) {
@@ -200,7 +193,6 @@ class Energy {
   std::vector<int> tets_; // tets with a free node
   std::vector<double> term_;
   std::vector<Vec3> grad_; // per tet and local node
-  std::array<std::array<Vec3, 3>, 4> corner_edges_; // W e for the reference tet's corner edges e
 };
 
 // Minimizes e from the mesh's current free nodes (left at the best point
