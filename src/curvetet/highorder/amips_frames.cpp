@@ -13,6 +13,15 @@
 #include <mutex>
 #include <stdexcept>
 
+// The two products below are most of the optimizer's arithmetic: on x86-64
+// they also get an AVX2 version, chosen at load time. Each sum keeps its
+// order of operations (no FMA), so both versions give the same bits.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define CURVETET_WIDE_VECTORS __attribute__((target_clones("avx2", "default")))
+#else
+#define CURVETET_WIDE_VECTORS
+#endif
+
 namespace curvetet::highorder {
 
 AmipsFrames::AmipsFrames(int order) {
@@ -23,31 +32,80 @@ AmipsFrames::AmipsFrames(int order) {
   w_.col(2) << 0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0);
   const Eigen::Matrix3d w_inv = w_.inverse();
   const Eigen::Vector3d e1 = Eigen::Vector3d::UnitX(), e2 = Eigen::Vector3d::UnitY(), e3 = Eigen::Vector3d::UnitZ();
-  const CornerEdges reference = {{{e1, e2, e3}, {e1, e2 - e1, e3 - e1}, {e2, e2 - e1, e3 - e2}, {e3, e3 - e1, e3 - e2}}};
-  for (int c = 0; c < 4; ++c)
-    for (int i = 0; i < 3; ++i) corner_edges_[c][i] = w_ * reference[c][i];
+  const Edges reference = {e1, e2, e3, e2 - e1, e3 - e1, e3 - e2};
+  for (int i = 0; i < 6; ++i) edges_[i] = w_ * reference[i];
   nodes_ = tet_node_count(order);
   const std::vector<Eigen::Vector3d>& xis = quality_samples(order);
   points_ = static_cast<int>(xis.size());
   lattice_points_ = quality_lattice_points(order);
   h_.resize(nodes_, 3 * points_);
   for (int q = 0; q < points_; ++q) h_.middleCols<3>(3 * q) = lagrange_gradients(3, order, xis[q].data()) * w_inv;
+  const int blocks = (3 * points_ + kPanel - 1) / kPanel;
+  panels_.assign(static_cast<std::size_t>(blocks) * nodes_ * kPanel, 0.0);
+  for (int b = 0; b < blocks; ++b)
+    for (int l = 0; l < nodes_; ++l)
+      for (int j = 0; j < kPanel && b * kPanel + j < 3 * points_; ++j)
+        panels_[(static_cast<std::size_t>(b) * nodes_ + l) * kPanel + j] = h_(l, b * kPanel + j);
+  stride_ = blocks * kPanel;
+  rows_of_h_.assign(static_cast<std::size_t>(nodes_) * stride_, 0.0);
+  for (int l = 0; l < nodes_; ++l)
+    for (int j = 0; j < 3 * points_; ++j) rows_of_h_[static_cast<std::size_t>(l) * stride_ + j] = h_(l, j);
 }
 
-void AmipsFrames::frames(const Eigen::Vector3d* nodes, Eigen::Matrix3d* frames, int points) const {
-  // All frames at once: [K_0 K_1 ...] = X H, X = [x_0 ... x_n-1] (3 x n);
-  // an array of column-major Matrix3d is that 3 x 3P column-major matrix.
+CURVETET_WIDE_VECTORS void AmipsFrames::frames(const Eigen::Vector3d* nodes, Eigen::Matrix3d* frames, int points) const {
+  // [K_0 K_1 ...] = X H (X = [x_0 ... x_n-1], 3 x n), eight columns of H at
+  // a time with the 3 x 8 block of sums in registers; an array of
+  // column-major Matrix3d is that 3 x 3P column-major matrix.
   const int n = points < 0 ? points_ : std::min(points, points_);
-  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> x(nodes[0].data(), 3, nodes_);
-  Eigen::Map<Eigen::Matrix<double, 3, Eigen::Dynamic>> k(frames[0].data(), 3, 3 * n);
-  k.noalias() = x * h_.leftCols(3 * n);
+  const int columns = 3 * n;
+  double* out = frames[0].data();
+  for (int b = 0; b * kPanel < columns; ++b) {
+    double acc[3][kPanel] = {};
+    const double* panel = &panels_[static_cast<std::size_t>(b) * nodes_ * kPanel];
+    for (int l = 0; l < nodes_; ++l, panel += kPanel) {
+      const double x0 = nodes[l].x(), x1 = nodes[l].y(), x2 = nodes[l].z();
+      for (int j = 0; j < kPanel; ++j) {
+        acc[0][j] += x0 * panel[j];
+        acc[1][j] += x1 * panel[j];
+        acc[2][j] += x2 * panel[j];
+      }
+    }
+    const int width = std::min(kPanel, columns - b * kPanel);
+    for (int j = 0; j < width; ++j)
+      for (int r = 0; r < 3; ++r) out[3 * (b * kPanel + j) + r] = acc[r][j];
+  }
 }
 
-void AmipsFrames::node_gradients(const Eigen::Matrix3d* dfdk, Eigen::Vector3d* out, int points) const {
+CURVETET_WIDE_VECTORS void AmipsFrames::node_gradients(const Eigen::Matrix3d* dfdk, Eigen::Vector3d* out, int points) const {
+  // out[l] = G H^T: the rows of G (3 x 3P) made contiguous and padded with
+  // zeros to whole groups of kLanes, then kNodes nodes at a time, kLanes
+  // partial sums per node and coordinate (in registers), added in a fixed order.
+  constexpr int kNodes = 4, kLanes = 4;
   const int n = points < 0 ? points_ : std::min(points, points_);
-  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> g(dfdk[0].data(), 3, 3 * n);
-  Eigen::Map<Eigen::Matrix<double, 3, Eigen::Dynamic>> x(out[0].data(), 3, nodes_);
-  x.noalias() = g * h_.leftCols(3 * n).transpose();
+  const int columns = 3 * n, padded = (columns + kLanes - 1) / kLanes * kLanes;
+  thread_local std::vector<double> rows;
+  rows.assign(3 * static_cast<std::size_t>(padded), 0.0);
+  const double* g = dfdk[0].data();
+  for (int j = 0; j < columns; ++j)
+    for (int r = 0; r < 3; ++r) rows[r * padded + j] = g[3 * j + r];
+  const double* g0 = rows.data();
+  const double* g1 = g0 + padded;
+  const double* g2 = g1 + padded;
+    for (int l0 = 0; l0 < nodes_; l0 += kNodes) {
+    const int count = std::min(kNodes, nodes_ - l0);
+    double acc[kNodes][3][kLanes] = {};
+    const double* h[kNodes];
+    for (int i = 0; i < kNodes; ++i) h[i] = &rows_of_h_[static_cast<std::size_t>(l0 + std::min(i, count - 1)) * stride_];
+    for (int j = 0; j < padded; j += kLanes)
+      for (int i = 0; i < kNodes; ++i)
+        for (int t = 0; t < kLanes; ++t) {
+          acc[i][0][t] += g0[j + t] * h[i][j + t];
+          acc[i][1][t] += g1[j + t] * h[i][j + t];
+          acc[i][2][t] += g2[j + t] * h[i][j + t];
+        }
+    for (int i = 0; i < count; ++i)
+      for (int r = 0; r < 3; ++r) out[l0 + i][r] = (acc[i][r][0] + acc[i][r][1]) + (acc[i][r][2] + acc[i][r][3]);
+  }
 }
 
 void AmipsFrames::add_direction(int local, double w, Eigen::Vector3d* c) const {
@@ -120,24 +178,27 @@ Eigen::Vector3d AmipsFrames::amips_gradient(const Eigen::Matrix3d& k, const Eige
 Eigen::Vector3d AmipsFrames::scaled_jacobian_gradient(const Eigen::Matrix3d& k, const Eigen::Vector3d& c) const {
   // The corner frame that decides (quality.cpp's scaled_jacobian: the
   // largest product of squared edge lengths), with u its reference edges
-  // (corner_edges() holds W u):
+  // (edges() holds W u):
   // d log sJ / dK = K^-T - sum_u (K W u)(W u)^T / |K W u|^2.
   const Eigen::Matrix3d j = k * w_;
+  std::array<Eigen::Vector3d, 6> kwu;
+  std::array<double, 6> length2;
+  for (int e = 0; e < 6; ++e) {
+    kwu[e] = k * edges_[e];
+    length2[e] = kwu[e].squaredNorm();
+  }
   double largest = -1;
   int corner = 0;
   for (int i = 0; i < 4; ++i) {
     double f = 1;
-    for (const auto& wu : corner_edges_[i]) f *= (k * wu).squaredNorm();
+    for (int e : kCornerEdges[i]) f *= length2[e];
     if (f > largest) {
       largest = f;
       corner = i;
     }
   }
   Eigen::Matrix3d dlog = k.inverse().transpose();
-  for (const auto& wu : corner_edges_[corner]) {
-    const Eigen::Vector3d kwu = k * wu;
-    dlog -= kwu * wu.transpose() / kwu.squaredNorm();
-  }
+  for (int e : kCornerEdges[corner]) dlog -= kwu[e] * edges_[e].transpose() / length2[e];
   return scaled_jacobian(j) * (dlog * c);
 }
 

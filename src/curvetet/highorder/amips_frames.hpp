@@ -32,10 +32,11 @@ class AmipsFrames {
   int num_nodes() const { return nodes_; }
   // W, the reference tet -> the regular tet of unit edge (J = K W).
   const Eigen::Matrix3d& reference_to_regular() const { return w_; }
-  // W u for the reference tet's three edges u leaving each corner (up to
-  // sign): the edges of the corner frames the scaled Jacobian compares.
-  using CornerEdges = std::array<std::array<Eigen::Vector3d, 3>, 4>;
-  const CornerEdges& corner_edges() const { return corner_edges_; }
+  // W u for the reference tet's six edges u (up to sign), and the three of
+  // them leaving each corner: the corner frames the scaled Jacobian compares.
+  using Edges = std::array<Eigen::Vector3d, 6>;
+  const Edges& edges() const { return edges_; }
+  static constexpr std::array<std::array<int, 3>, 4> kCornerEdges = {{{0, 1, 2}, {0, 3, 4}, {1, 3, 5}, {2, 4, 5}}};
 
   // frames[q] = K_q for q < points (-1: num_points()); nodes in internal
   // (Gmsh) order.
@@ -73,8 +74,15 @@ class AmipsFrames {
  private:
   int points_ = 0, lattice_points_ = 0, nodes_ = 0;
   Eigen::Matrix3d w_;  // reference tet -> regular tet
-  CornerEdges corner_edges_;
+  Edges edges_;
   Eigen::MatrixXd h_;  // nodes_ x (3 points_): row l, columns 3q..3q+2 = h_{l,q}^T
+  // h_ by panels of kPanel columns (the last padded with zeros), each panel
+  // node by node: the products above read it in order, with no packing per call.
+  static constexpr int kPanel = 8;
+  std::vector<double> panels_;
+  // h_ row-major, each row padded with zeros to stride_ entries (node_gradients).
+  int stride_ = 0;
+  std::vector<double> rows_of_h_;
 };
 
 // One table per order, built on first use (thread-safe).

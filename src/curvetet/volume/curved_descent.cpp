@@ -135,19 +135,26 @@ class Energy {
     if (dk) *dk = (power_ * amips_term / a) / det23 * (2 * k - (2.0 / 3.0) * norm2 * k_inv_t);
     const double det_j = det * frames_.reference_to_regular().determinant();
     const double scale = sj_ref_ * sj_ref_ / (2 * det_j * det_j);
-    for (const auto& u : frames_.corner_edges()) {
-      Vec3 ku[3];
-      double r = scale;
-      for (int i = 0; i < 3; ++i) {
-        ku[i] = k * u[i];
-        r *= ku[i].squaredNorm();
-      }
+    // The six edges once; each corner's term from the three it holds, and
+    // each edge's part of the gradient once, weighted by its two corners' terms.
+    const auto& edges = frames_.edges();
+    Vec3 ku[6];
+    double length2[6];
+    for (int i = 0; i < 6; ++i) {
+      ku[i] = k * edges[i];
+      length2[i] = ku[i].squaredNorm();
+    }
+    double corner_terms = 0, edge_weight[6] = {};
+    for (const auto& corner : highorder::AmipsFrames::kCornerEdges) {
+      const double r = scale * length2[corner[0]] * length2[corner[1]] * length2[corner[2]];
       const double term = power_of(r, 0.5 * power_);
       e += term;
-      if (!dk) continue;
-      Mat3 dlog = k_inv_t;
-      for (int i = 0; i < 3; ++i) dlog -= ku[i] * u[i].transpose() / ku[i].squaredNorm();
-      *dk -= power_ * term * dlog;
+      corner_terms += term;
+      for (int i : corner) edge_weight[i] += term;
+    }
+    if (dk) {
+      *dk -= power_ * corner_terms * k_inv_t;
+      for (int i = 0; i < 6; ++i) *dk += (power_ * edge_weight[i] / length2[i]) * ku[i] * edges[i].transpose();
     }
     return e;
   }
