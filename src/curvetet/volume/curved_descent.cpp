@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <deque>
@@ -98,10 +99,12 @@ class Energy {
   // E at the mesh's current nodes (+inf where a point is not positive);
   // with `grad`, also its gradient.
   double operator()(Eigen::VectorXd* grad) {
+    infinite_ = false;
     for_tets([&](int t, std::vector<Mat3>& k, std::vector<Mat3>& dk, std::vector<Vec3>& g) {
       double e = 0;
       for (int q = 0; q < points_ && std::isfinite(e); ++q) e += point_energy(k[q], grad ? &dk[q] : nullptr);
       term_[t] = e;
+      if (!std::isfinite(e)) infinite_ = true;
       if (!grad || !std::isfinite(e)) return;
       frames_.node_gradients(dk.data(), g.data(), points_);
       std::copy(g.begin(), g.end(), grad_.begin() + static_cast<std::ptrdiff_t>(t) * np_);
@@ -183,6 +186,10 @@ class Energy {
       std::vector<Vec3> x(np_), g(np_);
       for (std::size_t j = r.begin(); j < r.end(); ++j) {
         const int t = tets_[j];
+        if (infinite_.load(std::memory_order_relaxed)) { // E is +inf whatever the rest
+          term_[t] = kInf;
+          continue;
+        }
         for (int i = 0; i < np_; ++i) x[i] = m_.nodes[m_.tets[t * np_ + i]];
         frames_.frames(x.data(), k.data(), points_);
         fn(t, k, dk, g);
@@ -198,6 +205,7 @@ class Energy {
   int points_, np_;
   double amips_ref_ = 1, sj_ref_ = 1;
   std::vector<int> tets_; // tets with a free node
+  std::atomic<bool> infinite_{false}; // a term of the evaluation under way is +inf
   std::vector<double> term_;
   std::vector<Vec3> grad_; // per tet and local node
 };
