@@ -110,6 +110,34 @@ TEST(AmipsFrames, RankOneUpdateEqualsRecomputedFrames) {
   EXPECT_NEAR(f.max_amips(k.data(), c.data(), d), tet_quality(p, moved.data()).max_amips, 1e-10);
 }
 
+// The trials' rank-one terms give the lattice's max AMIPS of the moved tet
+// (the determinant lemma and the expanded norm), +inf once the move inverts
+// a point, and stop at the bound like the direct form.
+TEST(AmipsFrames, RankOneTermsEqualTheDirectForm) {
+  const int p = 4;
+  const AmipsFrames& f = amips_frames(p);
+  const auto nodes = mapped_tet(p, unit_tet(), gentle_bend);
+  const int lattice = f.num_lattice_points();
+  std::vector<Eigen::Matrix3d> k(f.num_points());
+  f.frames(nodes.data(), k.data());
+  std::vector<Eigen::Vector3d> c(f.num_points(), Eigen::Vector3d::Zero());
+  f.add_direction(0, 1.0, c.data());
+  f.add_direction(20, 0.5, c.data());
+  std::vector<AmipsFrames::RankOneTerms> terms(lattice);
+  f.rank_one_terms(k.data(), c.data(), terms.data(), lattice);
+  for (const Eigen::Vector3d& d : {Eigen::Vector3d(0.03, -0.02, 0.05), Eigen::Vector3d(-0.05, 0.02, 0.04), Eigen::Vector3d(0, 0, 0)}) {
+    const double direct = f.max_amips(k.data(), c.data(), d, std::numeric_limits<double>::infinity(), lattice);
+    EXPECT_NEAR(f.max_amips(terms.data(), d, std::numeric_limits<double>::infinity(), lattice), direct, 1e-12 * direct);
+    EXPECT_GE(f.max_amips(terms.data(), d, 0.5 * direct, lattice), 0.5 * direct);
+  }
+  // Corner 0 pushed through the opposite face: some point inverts.
+  const Eigen::Vector3d through(2, 2, 2);
+  EXPECT_EQ(f.max_amips(k.data(), c.data(), through, std::numeric_limits<double>::infinity(), lattice),
+            std::numeric_limits<double>::infinity());
+  EXPECT_EQ(f.max_amips(terms.data(), through, std::numeric_limits<double>::infinity(), lattice),
+            std::numeric_limits<double>::infinity());
+}
+
 TEST(AmipsFrames, InvertedIsInfiniteAndBoundStopsEarly) {
   const int p = 3;
   const AmipsFrames& f = amips_frames(p);

@@ -128,6 +128,30 @@ double AmipsFrames::max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector
   return std::cbrt(worst_cubed);
 }
 
+void AmipsFrames::rank_one_terms(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, RankOneTerms* out,
+                                 int points) const {
+  const int n = points < 0 ? points_ : std::min(points, points_);
+  for (int q = 0; q < n; ++q) {
+    const Eigen::Matrix3d& k = frames[q];
+    const Eigen::Vector3d x = k.col(1).cross(k.col(2)), y = k.col(2).cross(k.col(0)), z = k.col(0).cross(k.col(1));
+    out[q] = {k.col(0).dot(x), k.squaredNorm(), c[q].squaredNorm(), k * c[q], c[q].x() * x + c[q].y() * y + c[q].z() * z};
+  }
+}
+
+double AmipsFrames::max_amips(const RankOneTerms* terms, const Eigen::Vector3d& d, double bound, int points) const {
+  const int n = points < 0 ? points_ : std::min(points, points_);
+  const double bound_cubed = bound * bound * bound, d2 = d.squaredNorm();
+  double worst_cubed = 0;
+  for (int q = 0; q < n && worst_cubed < bound_cubed; ++q) {
+    const RankOneTerms& t = terms[q];
+    const double det = t.det + d.dot(t.cof_c);
+    if (!(det > 0)) return std::numeric_limits<double>::infinity();
+    const double n2 = t.norm2 + 2 * d.dot(t.kc) + d2 * t.c2;
+    worst_cubed = std::max(worst_cubed, n2 * n2 * n2 / (det * det));
+  }
+  return std::cbrt(worst_cubed);
+}
+
 double AmipsFrames::min_scaled_jacobian(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c,
                                         const Eigen::Vector3d& d, double floor, int points, int from) const {
   const int n = points < 0 ? points_ : std::min(points, points_);

@@ -60,6 +60,18 @@ class AmipsFrames {
                              double floor = -std::numeric_limits<double>::infinity(), int points = -1,
                              int from = 0) const;
 
+  // For trials of many d on the same frames and directions: per point,
+  // the terms that make AMIPS(K + d c^T) two dot products away
+  // (|K + d c^T|^2 = |K|^2 + 2 d.(K c) + |d|^2 |c|^2 and, by the matrix
+  // determinant lemma, det(K + d c^T) = det K + d.(cof(K) c)).
+  struct RankOneTerms {
+    double det, norm2, c2;
+    Eigen::Vector3d kc, cof_c;
+  };
+  void rank_one_terms(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, RankOneTerms* out, int points) const;
+  // max_amips(frames, c, d, bound, points) from those terms (equal up to rounding).
+  double max_amips(const RankOneTerms* terms, const Eigen::Vector3d& d, double bound, int points) const;
+
   // Where the measures above are worst among the first `points` points
   // (-1: all): the index of the largest AMIPS / smallest scaled Jacobian,
   // its value in *value.

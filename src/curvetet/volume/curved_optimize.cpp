@@ -40,6 +40,10 @@ enum class Outcome { accepted, rejected_quality, rejected_certificate };
 struct Scratch {
   std::vector<Eigen::Matrix3d*> frames;
   std::vector<Eigen::Vector3d> directions;
+  // The trials' AMIPS terms on the order-2P lattice, per touched tet, made
+  // when a trial first reaches the tet.
+  std::vector<highorder::AmipsFrames::RankOneTerms> terms;
+  std::vector<char> has_terms;
 };
 
 constexpr std::size_t kBatchSize = 64; // moves tried in parallel at once
@@ -314,6 +318,8 @@ class CurvedOptimizer {
     x.frames.clear();
     for (int t : mv.tets) x.frames.push_back(cache_.cached_frames(t));
     x.directions.assign(mv.tets.size() * q_, Vec3::Zero());
+    x.terms.resize(mv.tets.size() * table_.num_lattice_points());
+    x.has_terms.assign(mv.tets.size(), 0);
     for (std::size_t k = 0; k < mv.tets.size(); ++k)
       for (int i = 0; i < np_; ++i) {
         const int id = m_.tet(mv.tets[k])[i];
@@ -325,11 +331,17 @@ class CurvedOptimizer {
   // Max AMIPS of the touched tets mv.tets[k], k in `which`, were the move's
   // nodes displaced by d, on the order-2P lattice (the trials); stops early
   // (returning a value >= bound) once a tet reaches `bound`.
-  double trial_amips(const Scratch& x, const std::vector<int>& which, const Vec3& d,
+  double trial_amips(Scratch& x, const std::vector<int>& which, const Vec3& d,
                      double bound = std::numeric_limits<double>::infinity()) const {
+    const int lattice = table_.num_lattice_points();
     double worst = 0;
     for (int k : which) {
-      worst = std::max(worst, table_.max_amips(x.frames[k], &x.directions[k * q_], d, bound, table_.num_lattice_points()));
+      highorder::AmipsFrames::RankOneTerms* terms = &x.terms[static_cast<std::size_t>(k) * lattice];
+      if (!x.has_terms[k]) {
+        table_.rank_one_terms(x.frames[k], &x.directions[k * q_], terms, lattice);
+        x.has_terms[k] = 1;
+      }
+      worst = std::max(worst, table_.max_amips(terms, d, bound, lattice));
       if (worst >= bound) break;
     }
     return worst;
@@ -440,13 +452,15 @@ class CurvedOptimizer {
     // Keeps d when the touched tets meet the constraints at every sample of
     // the convention (so what is reported is what is optimized) and are
     // certified positive. Only for a d whose trial passed: its order-2P
-    // lattice is already known to meet them (same sums, same or stricter
-    // bounds), so the check starts after it.
+    // lattice is already known to meet the scaled-Jacobian constraint (same
+    // sums, same or stricter bounds), so that check starts after it; the
+    // trials' AMIPS came from the rank-one terms (other roundings), so
+    // AMIPS is checked again on every sample.
     const int lattice = table_.num_lattice_points();
     const auto accept_at = [&](const Vec3& d) {
       for (int k : all) {
         const Vec3* c = &x.directions[k * q_];
-        if (!(table_.max_amips(x.frames[k], c, d, amips_bound, -1, lattice) < amips_bound)) return false;
+        if (!(table_.max_amips(x.frames[k], c, d, amips_bound) < amips_bound)) return false;
         const double sj = table_.min_scaled_jacobian(x.frames[k], c, d, sj_floor, -1, lattice);
         if (goal == Goal::amips ? sj < sj_floor : !(sj > sj_floor)) return false;
       }
