@@ -38,31 +38,28 @@ AmipsFrames::AmipsFrames(int order) {
   const std::vector<Eigen::Vector3d>& xis = quality_samples(order);
   points_ = static_cast<int>(xis.size());
   lattice_points_ = quality_lattice_points(order);
-  h_.resize(nodes_, 3 * points_);
-  for (int q = 0; q < points_; ++q) h_.middleCols<3>(3 * q) = lagrange_gradients(3, order, xis[q].data()) * w_inv;
-  const int blocks = (3 * points_ + kPanel - 1) / kPanel;
-  panels_.assign(static_cast<std::size_t>(blocks) * nodes_ * kPanel, 0.0);
-  for (int b = 0; b < blocks; ++b)
+  // Rows padded with zeros to whole groups of kPanel (the products read
+  // past 3 points_ and add zeros).
+  stride_ = (3 * points_ + kPanel - 1) / kPanel * kPanel;
+  h_.assign(static_cast<std::size_t>(nodes_) * stride_, 0.0);
+  for (int q = 0; q < points_; ++q) {
+    const Eigen::MatrixXd hq = lagrange_gradients(3, order, xis[q].data()) * w_inv;
     for (int l = 0; l < nodes_; ++l)
-      for (int j = 0; j < kPanel && b * kPanel + j < 3 * points_; ++j)
-        panels_[(static_cast<std::size_t>(b) * nodes_ + l) * kPanel + j] = h_(l, b * kPanel + j);
-  stride_ = blocks * kPanel;
-  rows_of_h_.assign(static_cast<std::size_t>(nodes_) * stride_, 0.0);
-  for (int l = 0; l < nodes_; ++l)
-    for (int j = 0; j < 3 * points_; ++j) rows_of_h_[static_cast<std::size_t>(l) * stride_ + j] = h_(l, j);
+      for (int i = 0; i < 3; ++i) h_[static_cast<std::size_t>(l) * stride_ + 3 * q + i] = hq(l, i);
+  }
 }
 
 CURVETET_WIDE_VECTORS void AmipsFrames::frames(const Eigen::Vector3d* nodes, Eigen::Matrix3d* frames, int points) const {
-  // [K_0 K_1 ...] = X H (X = [x_0 ... x_n-1], 3 x n), eight columns of H at
-  // a time with the 3 x 8 block of sums in registers; an array of
+  // [K_0 K_1 ...] = X H (X = [x_0 ... x_n-1], 3 x n), kPanel columns of H
+  // at a time with the 3 x kPanel block of sums in registers; an array of
   // column-major Matrix3d is that 3 x 3P column-major matrix.
   const int n = points < 0 ? points_ : std::min(points, points_);
   const int columns = 3 * n;
   double* out = frames[0].data();
   for (int b = 0; b * kPanel < columns; ++b) {
     double acc[3][kPanel] = {};
-    const double* panel = &panels_[static_cast<std::size_t>(b) * nodes_ * kPanel];
-    for (int l = 0; l < nodes_; ++l, panel += kPanel) {
+    for (int l = 0; l < nodes_; ++l) {
+      const double* panel = &h_[static_cast<std::size_t>(l) * stride_ + b * kPanel];
       const double x0 = nodes[l].x(), x1 = nodes[l].y(), x2 = nodes[l].z();
       for (int j = 0; j < kPanel; ++j) {
         acc[0][j] += x0 * panel[j];
@@ -91,11 +88,11 @@ CURVETET_WIDE_VECTORS void AmipsFrames::node_gradients(const Eigen::Matrix3d* df
   const double* g0 = rows.data();
   const double* g1 = g0 + padded;
   const double* g2 = g1 + padded;
-    for (int l0 = 0; l0 < nodes_; l0 += kNodes) {
+  for (int l0 = 0; l0 < nodes_; l0 += kNodes) {
     const int count = std::min(kNodes, nodes_ - l0);
     double acc[kNodes][3][kLanes] = {};
     const double* h[kNodes];
-    for (int i = 0; i < kNodes; ++i) h[i] = &rows_of_h_[static_cast<std::size_t>(l0 + std::min(i, count - 1)) * stride_];
+    for (int i = 0; i < kNodes; ++i) h[i] = &h_[static_cast<std::size_t>(l0 + std::min(i, count - 1)) * stride_];
     for (int j = 0; j < padded; j += kLanes)
       for (int i = 0; i < kNodes; ++i)
         for (int t = 0; t < kLanes; ++t) {
@@ -109,7 +106,8 @@ CURVETET_WIDE_VECTORS void AmipsFrames::node_gradients(const Eigen::Matrix3d* df
 }
 
 void AmipsFrames::add_direction(int local, double w, Eigen::Vector3d* c) const {
-  for (int q = 0; q < points_; ++q) c[q] += w * h_.row(local).segment<3>(3 * q).transpose();
+  const double* h = &h_[static_cast<std::size_t>(local) * stride_];
+  for (int q = 0; q < points_; ++q) c[q] += w * Eigen::Vector3d(h[3 * q], h[3 * q + 1], h[3 * q + 2]);
 }
 
 double AmipsFrames::max_amips(const Eigen::Matrix3d* frames, const Eigen::Vector3d* c, const Eigen::Vector3d& d,

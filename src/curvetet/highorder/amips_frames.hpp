@@ -87,14 +87,11 @@ class AmipsFrames {
   int points_ = 0, lattice_points_ = 0, nodes_ = 0;
   Eigen::Matrix3d w_;  // reference tet -> regular tet
   Edges edges_;
-  Eigen::MatrixXd h_;  // nodes_ x (3 points_): row l, columns 3q..3q+2 = h_{l,q}^T
-  // h_ by panels of kPanel columns (the last padded with zeros), each panel
-  // node by node: the products above read it in order, with no packing per call.
+  // h_{l,q}^T at entries l * stride_ + 3q .. 3q+2 (row-major, rows padded
+  // with zeros): the products read it in order, with no packing per call.
   static constexpr int kPanel = 8;
-  std::vector<double> panels_;
-  // h_ row-major, each row padded with zeros to stride_ entries (node_gradients).
   int stride_ = 0;
-  std::vector<double> rows_of_h_;
+  std::vector<double> h_;
 };
 
 // One table per order, built on first use (thread-safe).
