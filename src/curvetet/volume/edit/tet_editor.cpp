@@ -51,8 +51,7 @@ TetEditor::TetEditor(const mesh::TetMesh& m) : order_(m.order), np_(m.tet_nodes(
       const int id = m.tet(t)[i];
       const Key key = node_key(corners_[t], i);
       if (key_of_[id][0] >= 0 && key_of_[id] != key) throw std::invalid_argument("TetEditor: node shared by two lattice points");
-      const auto [it, inserted] = node_of_.try_emplace(key, id);
-      if (!inserted && it->second != id)
+      if (!node_of_.insert(key, id) && node_of_.find(key) != id)
         throw std::invalid_argument("TetEditor: the mesh is not conforming (one lattice point, two nodes)");
       key_of_[id] = key;
     }
@@ -125,7 +124,7 @@ bool TetEditor::has_face(int a, int b, int c) const {
 }
 
 void TetEditor::ref(int node) {
-  if (refs_[node]++ == 0) node_of_.emplace(key_of_[node], node);
+  if (refs_[node]++ == 0) node_of_.insert(key_of_[node], node);
 }
 
 void TetEditor::unref(int node) {
@@ -177,6 +176,7 @@ void TetEditor::refresh_shape(int t) {
 void TetEditor::begin() {
   if (open_) throw std::logic_error("TetEditor: nested transaction");
   open_ = true;
+  first_new_node_ = num_nodes();
   journal_.clear();
   added_.clear();
   killed_.clear();
@@ -201,9 +201,8 @@ int TetEditor::add(Corners c, int tag) { // by value: c may be one of ours
   for (int i = 0; i < 4; ++i) ids[i] = c[i];
   for (int i = 4; i < np_; ++i) {
     const Key key = node_key(c, i);
-    const auto it = node_of_.find(key);
-    if (it != node_of_.end()) {
-      ids[i] = it->second;
+    if (const int id = node_of_.find(key); id >= 0) {
+      ids[i] = id;
       continue;
     }
     // A new node on the straight simplex of its corners.
@@ -274,14 +273,17 @@ Vec3 TetEditor::straight_position(int node) const {
 
 void TetEditor::relax_new_nodes() {
   constexpr int kSweeps = 8; // Gauss-Seidel; a star is a few node layers deep
-  std::unordered_map<int, int> local; // new node -> index
+  // The transaction's nodes are the ids from first_new_node_ on; vertices
+  // among them (add_vertex) are not relaxed.
+  std::vector<int> local(nodes_.size() - first_new_node_, -1); // new node - first_new_node_ -> index
   std::vector<int> ids;
-  for (const auto& e : journal_)
-    if (e.op == Op::new_node && key_of_[e.id][1] != order_) {
-      local.emplace(e.id, static_cast<int>(ids.size()));
-      ids.push_back(e.id);
+  for (int id = first_new_node_; id < num_nodes(); ++id)
+    if (key_of_[id][1] != order_) {
+      local[id - first_new_node_] = static_cast<int>(ids.size());
+      ids.push_back(id);
     }
   if (ids.empty()) return;
+  const auto index_of = [&](int id) { return id < first_new_node_ ? -1 : local[id - first_new_node_]; };
   // Per new node, on the lattices of the added tets: its new neighbours and
   // the summed displacement (from straight) of the others, which stay put.
   std::vector<std::vector<int>> free(ids.size());
@@ -289,15 +291,15 @@ void TetEditor::relax_new_nodes() {
   std::vector<int> degree(ids.size(), 0);
   const auto link_to = [&](int i, int w) {
     ++degree[i];
-    const auto it = local.find(w);
-    if (it != local.end()) free[i].push_back(it->second);
+    const int j = index_of(w);
+    if (j >= 0) free[i].push_back(j);
     else fixed_sum[i] += nodes_[w] - straight_position(w);
   };
   for (int t : added_) {
     const int* n = nodes(t);
     for (const auto& [a, b] : highorder::tet_lattice_edges(order_)) {
-      if (const auto ia = local.find(n[a]); ia != local.end()) link_to(ia->second, n[b]);
-      if (const auto ib = local.find(n[b]); ib != local.end()) link_to(ib->second, n[a]);
+      if (const int ia = index_of(n[a]); ia >= 0) link_to(ia, n[b]);
+      if (const int ib = index_of(n[b]); ib >= 0) link_to(ib, n[a]);
     }
   }
   std::vector<Vec3> d(ids.size(), Vec3::Zero());

@@ -19,11 +19,11 @@
 // its curved nodes and the feature curves never change.
 // Corner vertex ids are node ids (of the input mesh, or made by add_vertex).
 #include "curvetet/mesh/tet_mesh.hpp"
+#include "curvetet/volume/edit/node_key_table.hpp"
 #include "curvetet/volume/edit/tet_shape.hpp"
 
 #include <array>
 #include <cstdint>
-#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -95,7 +95,7 @@ class TetEditor {
   mesh::TetMesh to_mesh() const;
 
  private:
-  using Key = std::array<int, 8>; // (vertex, weight) x 4, sorted by vertex, padded with -1
+  using Key = NodeKey;
   struct KeyHash {
     template <std::size_t N>
     std::size_t operator()(const std::array<int, N>& k) const {
@@ -124,7 +124,7 @@ class TetEditor {
   std::vector<Vec3> nodes_;
   std::vector<Key> key_of_;
   std::vector<int> refs_;
-  std::unordered_map<Key, int, KeyHash> node_of_;
+  NodeKeyTable node_of_; // live nodes
   std::vector<Corners> corners_;
   std::vector<int> tet_nodes_;
   std::vector<int> tags_;
@@ -135,6 +135,7 @@ class TetEditor {
   std::vector<char> frozen_;
   std::unordered_set<std::array<int, 3>, KeyHash> boundary_faces_; // sorted corner triples
   bool open_ = false;
+  int first_new_node_ = 0; // of the open transaction
   std::vector<Entry> journal_;
   std::vector<int> added_, killed_;
 };
