@@ -11,6 +11,9 @@
 #include <tbb/partitioner.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <optional>
 #include <chrono>
 #include <limits>
 #include <unordered_map>
@@ -104,6 +107,64 @@ double preview(TetEditor& e, Proposal& p, double bound) {
   return worst;
 }
 
+// Previews already made this round. A preview depends only on the
+// proposal's tets and on the entities among their corners (the nodes the new
+// tets reuse, the relaxation's fixed neighbours): node positions change only
+// by commits here (the smoothing runs between rounds), and a commit that
+// changes an entity among those corners adds tets at each of them, except at
+// a collapsed vertex, whose tets (and so the proposal's) all die. So a
+// preview of the same proposal under the same bound stands while no corner
+// has been changed since. Neighbouring bad tets propose many of the same
+// operations: about half the previews of a round are repeats.
+class PreviewMemo {
+ public:
+  std::optional<double> find(const Proposal& p, double bound, const std::vector<long>& changed_at) {
+    if (p.adds_vertex) return std::nullopt; // its vertex's placement search is not memoized
+    const auto it = known_.find(key(p, bound));
+    if (it == known_.end()) return std::nullopt;
+    for (int v : it->second.corners)
+      if (v < static_cast<int>(changed_at.size()) && changed_at[v] > it->second.stamp) return std::nullopt;
+    return it->second.new_max;
+  }
+  void remember(const Proposal& p, double bound, double new_max, long stamp) {
+    if (p.adds_vertex) return;
+    Entry& e = known_[key(p, bound)];
+    e.new_max = new_max;
+    e.stamp = stamp;
+    e.corners.clear();
+    for (const auto& [c, tag] : p.add) e.corners.insert(e.corners.end(), c.begin(), c.end());
+    std::sort(e.corners.begin(), e.corners.end());
+    e.corners.erase(std::unique(e.corners.begin(), e.corners.end()), e.corners.end());
+  }
+
+ private:
+  struct Entry {
+    double new_max = 0;
+    long stamp = 0;           // commits made before the preview
+    std::vector<int> corners; // of the new tets: those of the killed ones, but a collapsed vertex
+  };
+  struct Hash {
+    std::size_t operator()(const std::vector<std::int64_t>& k) const {
+      std::uint64_t h = 0x9e3779b97f4a7c15ull;
+      for (std::int64_t x : k) h = (h ^ static_cast<std::uint64_t>(x)) * 0x100000001b3ull;
+      return static_cast<std::size_t>(h ^ (h >> 32));
+    }
+  };
+  static std::vector<std::int64_t> key(const Proposal& p, double bound) {
+    std::vector<std::int64_t> k(p.kill.begin(), p.kill.end());
+    k.push_back(-2);
+    for (const auto& [c, tag] : p.add) {
+      k.insert(k.end(), c.begin(), c.end());
+      k.push_back(tag);
+    }
+    std::int64_t bits;
+    std::memcpy(&bits, &bound, sizeof bits);
+    k.push_back(bits);
+    return k;
+  }
+  std::unordered_map<std::vector<std::int64_t>, Entry, Hash> known_;
+};
+
 class Remesher {
  public:
   Remesher(TetEditor& e, const CurvedRemeshOptions& o, CurvedRemeshStats& s)
@@ -170,15 +231,25 @@ class Remesher {
   // first whose new tets pass the checks under the limits the caller sets
   // for it (cap = the AMIPS a new tet may reach anyway).
   bool run_best(std::vector<Candidate>& candidates, double amips_cap) {
-    for (auto& k : candidates) k.limits = limits_for(k.p, amips_cap);
+    std::vector<std::size_t> to_preview;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      candidates[k].limits = limits_for(candidates[k].p, amips_cap);
+      if (const auto known = previews_.find(candidates[k].p, candidates[k].limits.max_amips, changed_at_))
+        candidates[k].new_max = *known;
+      else to_preview.push_back(k);
+    }
     tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, candidates.size(), 1),
+        tbb::blocked_range<std::size_t>(0, to_preview.size(), 1),
         [&](const tbb::blocked_range<std::size_t>& r) {
           TetEditor& replica = up_to_date_replica();
-          for (std::size_t k = r.begin(); k < r.end(); ++k)
-            candidates[k].new_max = preview(replica, candidates[k].p, candidates[k].limits.max_amips);
+          for (std::size_t j = r.begin(); j < r.end(); ++j) {
+            Candidate& k = candidates[to_preview[j]];
+            k.new_max = preview(replica, k.p, k.limits.max_amips);
+          }
         },
         tbb::simple_partitioner());
+    for (std::size_t k : to_preview)
+      previews_.remember(candidates[k].p, candidates[k].limits.max_amips, candidates[k].new_max, commits_);
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const Candidate& a, const Candidate& b) { return a.new_max < b.new_max; });
     for (const Candidate& k : candidates) {
@@ -306,6 +377,7 @@ class Remesher {
   tbb::enumerable_thread_specific<Replica> replicas_;
   long commits_ = 0;
   std::vector<long> changed_at_;              // per vertex: the commit that last changed its star
+  PreviewMemo previews_;
   std::unordered_map<int, long> failed_at_;   // per tet: commits_ when its visit last failed
 };
 
