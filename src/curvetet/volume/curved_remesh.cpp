@@ -11,11 +11,11 @@
 #include <tbb/partitioner.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
-#include <optional>
-#include <chrono>
 #include <limits>
+#include <optional>
 #include <unordered_map>
 
 namespace curvetet::volume {
@@ -115,7 +115,7 @@ double preview(TetEditor& e, Proposal& p, double bound) {
 // a collapsed vertex, whose tets (and so the proposal's) all die. So a
 // preview of the same proposal under the same bound stands while no corner
 // has been changed since. Neighbouring bad tets propose many of the same
-// operations: about half the previews of a round are repeats.
+// operations.
 class PreviewMemo {
  public:
   std::optional<double> find(const Proposal& p, double bound, const std::vector<long>& changed_at) {
