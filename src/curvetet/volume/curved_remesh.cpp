@@ -2,6 +2,7 @@
 
 #include "curvetet/core/log.hpp"
 #include "curvetet/volume/curved_descent.hpp"
+#include "curvetet/volume/edit/integer_hash.hpp"
 #include "curvetet/volume/edit/operations.hpp"
 #include "curvetet/volume/edit/tet_editor.hpp"
 
@@ -143,13 +144,6 @@ class PreviewMemo {
     long stamp = 0;           // commits made before the preview
     std::vector<int> corners; // of the new tets: those of the killed ones, but a collapsed vertex
   };
-  struct Hash {
-    std::size_t operator()(const std::vector<std::int64_t>& k) const {
-      std::uint64_t h = 0x9e3779b97f4a7c15ull;
-      for (std::int64_t x : k) h = (h ^ static_cast<std::uint64_t>(x)) * 0x100000001b3ull;
-      return static_cast<std::size_t>(h ^ (h >> 32));
-    }
-  };
   static std::vector<std::int64_t> key(const Proposal& p, double bound) {
     std::vector<std::int64_t> k(p.kill.begin(), p.kill.end());
     k.push_back(-2);
@@ -162,7 +156,7 @@ class PreviewMemo {
     k.push_back(bits);
     return k;
   }
-  std::unordered_map<std::vector<std::int64_t>, Entry, Hash> known_;
+  std::unordered_map<std::vector<std::int64_t>, Entry, edit::IntegerHash> known_;
 };
 
 class Remesher {

@@ -3,9 +3,10 @@
 // preview adds and removes hundreds of keys; std::unordered_map paid a heap
 // allocation for each, so this is an open-addressing table (linear probing,
 // deletion by backward shift): no allocation except when it grows.
+#include "curvetet/volume/edit/integer_hash.hpp"
+
 #include <array>
 #include <cstddef>
-#include <cstdint>
 #include <vector>
 
 namespace curvetet::volume::edit {
@@ -72,14 +73,7 @@ class NodeKeyTable {
 
   std::size_t mask() const { return slots_.size() - 1; }
 
-  std::size_t home(const NodeKey& key) const {
-    std::uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (int x : key) h = (h ^ static_cast<std::uint32_t>(x + 1)) * 0x100000001b3ull;
-    h ^= h >> 29; // the multiplications leave the low bits, which index the table, weakly mixed
-    h *= 0xbf58476d1ce4e5b9ull;
-    h ^= h >> 32;
-    return static_cast<std::size_t>(h) & mask();
-  }
+  std::size_t home(const NodeKey& key) const { return IntegerHash{}(key) & mask(); }
 
   void grow() {
     std::vector<Slot> old(2 * slots_.size());

@@ -19,6 +19,7 @@
 // its curved nodes and the feature curves never change.
 // Corner vertex ids are node ids (of the input mesh, or made by add_vertex).
 #include "curvetet/mesh/tet_mesh.hpp"
+#include "curvetet/volume/edit/integer_hash.hpp"
 #include "curvetet/volume/edit/node_key_table.hpp"
 #include "curvetet/volume/edit/tet_shape.hpp"
 
@@ -96,14 +97,6 @@ class TetEditor {
 
  private:
   using Key = NodeKey;
-  struct KeyHash {
-    template <std::size_t N>
-    std::size_t operator()(const std::array<int, N>& k) const {
-      std::size_t h = 0x9e3779b97f4a7c15ull;
-      for (int x : k) h = (h ^ static_cast<std::size_t>(x + 1)) * 0x100000001b3ull;
-      return h;
-    }
-  };
   Key node_key(const Corners& c, int local) const;
   Vec3 straight_position(int node) const; // on the straight simplex of its key's corners
   void link(int t);   // adjacency and node references of slot t
@@ -133,7 +126,7 @@ class TetEditor {
   mutable std::vector<char> shape_known_;
   std::vector<std::vector<int>> incident_;
   std::vector<char> frozen_;
-  std::unordered_set<std::array<int, 3>, KeyHash> boundary_faces_; // sorted corner triples
+  std::unordered_set<std::array<int, 3>, IntegerHash> boundary_faces_; // sorted corner triples
   bool open_ = false;
   int first_new_node_ = 0; // of the open transaction
   std::vector<Entry> journal_;
