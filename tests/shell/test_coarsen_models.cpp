@@ -8,6 +8,7 @@
 #include "curvetet/io/read_surface.hpp"
 #include "curvetet/shell/build.hpp"
 #include "curvetet/shell/coarsen.hpp"
+#include "curvetet/shell/curved_middle.hpp"
 #include "curvetet/shell/invariants.hpp"
 #include "curvetet/shell/star_invariants.hpp"
 
@@ -84,19 +85,11 @@ TEST(CoarsenModels, SlabRuleBoundsTheWorstSlab) {
   EXPECT_NE(st.passes.back().op, OpKind::split);
 }
 
-TEST(CoarsenModels, SameResultForOneAndTwoThreads) {
-  const auto input = test::sphere(4);
-  Shell a = build_shell(input).shell, b = a;
-  CoarsenOptions o;
-  {
-    ThreadLimit one(1);
-    coarsen_shell(a, o);
-  }
-  {
-    ThreadLimit two(2);
-    coarsen_shell(b, o);
-  }
+namespace {
+
+void expect_same_shell(const Shell& a, const Shell& b) {
   EXPECT_EQ(a.faces, b.faces);
+  EXPECT_EQ(a.middle_nodes, b.middle_nodes);
   EXPECT_EQ(a.tracked, b.tracked);
   ASSERT_EQ(a.num_vertices(), b.num_vertices());
   for (int v = 0; v < a.num_vertices(); ++v) {
@@ -109,6 +102,47 @@ TEST(CoarsenModels, SameResultForOneAndTwoThreads) {
     EXPECT_EQ(a.points[i].image.u, b.points[i].image.u);
     EXPECT_EQ(a.points[i].image.v, b.points[i].image.v);
   }
+}
+
+} // namespace
+
+TEST(CoarsenModels, SameResultForOneAndTwoThreads) {
+  const auto input = test::sphere(4);
+  Shell a = build_shell(input).shell, b = a;
+  CoarsenOptions o;
+  {
+    ThreadLimit one(1);
+    coarsen_shell(a, o);
+  }
+  {
+    ThreadLimit two(2);
+    coarsen_shell(b, o);
+  }
+  expect_same_shell(a, b);
+}
+
+// Rejections replayed from the memo stand for checks that would reject
+// again: the shell, and the rejection counts, are those of checking every
+// entry. With the curved middle and the thickness rule, whose state the
+// star's signature must cover.
+TEST(CoarsenModels, RememberedRejectionsChangeNothing) {
+  Shell a = build_shell(test::sphere(4)).shell, b = a;
+  CoarsenOptions o;
+  o.thickness_ratio = 4;
+  const CurvedMiddleFit fit(3);
+  const auto with = coarsen_shell(a, o, &fit);
+  o.remember_rejections = false;
+  const auto without = coarsen_shell(b, o, &fit);
+  long long remembered = 0;
+  ASSERT_EQ(with.passes.size(), without.passes.size());
+  for (std::size_t i = 0; i < with.passes.size(); ++i) {
+    remembered += with.passes[i].remembered;
+    EXPECT_EQ(without.passes[i].remembered, 0);
+    EXPECT_EQ(with.passes[i].tried, without.passes[i].tried) << "pass " << i;
+    EXPECT_EQ(with.passes[i].rejected, without.passes[i].rejected) << "pass " << i;
+  }
+  EXPECT_GT(remembered, 0);
+  expect_same_shell(a, b);
 }
 
 // Acceptance figure: >= 8x fewer faces on the bunny at epsilon = 1% with a

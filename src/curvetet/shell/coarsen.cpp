@@ -6,6 +6,7 @@
 #include "curvetet/shell/invariants.hpp"
 #include "curvetet/shell/local_thickness.hpp"
 #include "curvetet/shell/operations.hpp"
+#include "curvetet/shell/rejection_memo.hpp"
 #include "curvetet/shell/shell_editor.hpp"
 #include "curvetet/shell/star_invariants.hpp"
 #include "curvetet/shell/surface_distance.hpp"
@@ -54,6 +55,9 @@ class Operation {
   // Whether commits renew the entries around the new faces in this pass.
   virtual bool renews() const { return true; }
   virtual bool per_vertex() const { return false; }
+  // Whether a rejection may be remembered (rejection_memo.hpp): the
+  // candidates read nothing outside the faces around a and b.
+  virtual bool local() const { return false; }
   // Alternatives in preference order; the first that passes is committed.
   virtual std::vector<StarCandidate> candidates(const ShellEditor& e, int a, int b) const = 0;
 };
@@ -66,6 +70,7 @@ class CollapseOp final : public Operation {
  public:
   explicit CollapseOp(SmoothParams p) : p_(p) {}
   OpKind kind() const override { return OpKind::collapse; }
+  bool local() const override { return true; }
   std::optional<double> priority(const ShellEditor& e, int a, int b) const override { return middle_length(e, a, b); }
   // Both directions keeping `to`'s pillar first, then both re-aiming it.
   std::vector<StarCandidate> candidates(const ShellEditor& e, int a, int b) const override {
@@ -123,6 +128,7 @@ class SmoothOp final : public Operation {
  public:
   explicit SmoothOp(SmoothParams p) : p_(p) {}
   OpKind kind() const override { return OpKind::smooth; }
+  bool local() const override { return true; }
   bool renews() const override { return false; }
   bool per_vertex() const override { return true; }
   std::optional<double> priority(const ShellEditor& e, int a, int) const override {
@@ -195,10 +201,15 @@ struct SlotResult {
   std::optional<StarCandidate> accepted;
   int tried = 0;
   std::array<long long, kRejectionCount> rejected{};
+  std::uint64_t signature = 0;
+  bool remembered = false;      // taken from the memo
+  bool local_rejections = true; // every rejection by a star-local invariant
 };
 
+// `memo` (null: none) remembers and replays rejections of local operations.
 PassStats run_pass(ShellEditor& e, const Operation& op, const StarContext& ctx, const InvariantList& invariants,
-                   int round) {
+                   int round, RejectionMemo* memo) {
+  if (!op.local()) memo = nullptr;
   const auto start = clock_type::now();
   PassStats st;
   st.op = op.kind();
@@ -243,8 +254,17 @@ PassStats run_pass(ShellEditor& e, const Operation& op, const StarContext& ctx, 
     std::vector<SlotResult> results(batch.size());
     const auto check_start = clock_type::now();
     tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) {
-      auto cands = op.candidates(e, batch[i].a, batch[i].b);
       auto& r = results[i];
+      if (memo) {
+        r.signature = star_signature(e, batch[i].a, batch[i].b, ctx.thickness);
+        if (const RejectionRecord* before = memo->find(r.signature)) {
+          r.tried = before->tried;
+          r.rejected = before->rejected;
+          r.remembered = true;
+          return;
+        }
+      }
+      auto cands = op.candidates(e, batch[i].a, batch[i].b);
       if (cands.empty()) {
         r.tried = 1;
         ++r.rejected[static_cast<int>(Rejection::topology)];
@@ -258,6 +278,7 @@ PassStats run_pass(ShellEditor& e, const Operation& op, const StarContext& ctx, 
           return;
         }
         ++r.rejected[static_cast<int>(*why)];
+        r.local_rejections = r.local_rejections && rejection_is_local(*why);
       }
     });
     st.check_seconds += since(check_start);
@@ -266,7 +287,11 @@ PassStats run_pass(ShellEditor& e, const Operation& op, const StarContext& ctx, 
       auto& r = results[i];
       st.tried += r.tried;
       for (int k = 0; k < kRejectionCount; ++k) st.rejected[k] += r.rejected[k];
-      if (!r.accepted) continue;
+      st.remembered += r.remembered ? 1 : 0;
+      if (!r.accepted) {
+        if (memo && !r.remembered && r.local_rejections) memo->remember(r.signature, {r.tried, r.rejected});
+        continue;
+      }
       if (!caps_free_of_batch(ctx, *r.accepted, batch_id) || e.reshapes_batch_face(*r.accepted, batch_id)) {
         ++st.rejected[static_cast<int>(Rejection::batch_conflict)];
         continue;
@@ -362,6 +387,12 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
   const FlipOp flip;
   const SmoothOp smooth(pillar_params);
   const RefitOp refit;
+  // Feature straightening reads input faces beyond the star: no memo then.
+  std::optional<RejectionMemo> collapse_memo, smooth_memo;
+  if (o.remember_rejections && s.features.empty()) {
+    collapse_memo.emplace();
+    smooth_memo.emplace();
+  }
   if (o.debug_invariants) debug_check(s, out.epsilon, "coarsen start");
   for (int round = 0; round < o.max_rounds; ++round) {
     out.rounds = round + 1;
@@ -380,11 +411,12 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
     bool last = round + 1 == o.max_rounds;
     for (const Operation* op : ops) {
       if (op->kind() == OpKind::split && last) continue;
-      auto st = run_pass(editor, *op, ctx, invariants, round);
+      auto& memo = op->kind() == OpKind::collapse ? collapse_memo : smooth_memo;
+      auto st = run_pass(editor, *op, ctx, invariants, round, memo ? &*memo : nullptr);
       if (op->kind() == OpKind::collapse)
         last = last || st.accepted == 0 || before - s.num_prisms() < o.min_round_gain * before;
-      logger().info("coarsen round {} {}: {} -> {} faces, {}/{} accepted, {:.2f} s", round, to_string(st.op),
-                    st.faces_before, st.faces_after, st.accepted, st.tried, st.seconds);
+      logger().info("coarsen round {} {}: {} -> {} faces, {}/{} accepted, {:.2f} s ({} rejected as before)", round,
+                    to_string(st.op), st.faces_before, st.faces_after, st.accepted, st.tried, st.seconds, st.remembered);
       out.passes.push_back(st);
       if (o.debug_invariants) debug_check(s, out.epsilon, fmt::format("coarsen round {} {}", round, to_string(st.op)));
     }

@@ -56,6 +56,9 @@ struct CoarsenOptions {
   int max_rounds = 10;
   double min_round_gain = 0.01; // stop when a round removes fewer faces than this fraction
   bool debug_invariants = false; // global check (invariants 1-3, distance, map) after every pass
+  // Skip collapses and smooths whose star is unchanged since a local
+  // invariant rejected them (rejection_memo.hpp); same result either way.
+  bool remember_rejections = true;
   // With a curved fit: coarsen with a flat middle first (fast, and where a
   // curved patch gains nothing, e.g. flat CAD facets, the greedy order is
   // not disturbed by fits and certificates), then go on coarsening that
@@ -68,6 +71,7 @@ struct PassStats {
   OpKind op = OpKind::collapse;
   int round = 0;
   long long tried = 0, accepted = 0, batches = 0;
+  long long remembered = 0; // entries rejected unchanged since an earlier pass (rejection_memo.hpp)
   std::array<long long, kRejectionCount> rejected{};
   int faces_before = 0, faces_after = 0;
   double seconds = 0;
