@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -53,6 +54,34 @@ TEST(Orient3d, FilterAgreesWithExactOnNearDegenerateInput) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const Point3 o(0, 0, 0), x(1, 0, 0), y(0, 1, 0), q(nan, 0, 1);
   EXPECT_EQ(g::orient3d(o, x, y, q), g::orient3d_exact(o, x, y, q));
+}
+
+// A repeated point gives zero in any position; one ulp away from it the
+// sign is that of the nudge's direction against the other three points.
+TEST(Orient3d, RepeatedPointIsZeroAndOneUlpAwayIsNot) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coord(-1, 1);
+  for (int k = 0; k < 2000; ++k) {
+    std::array<Point3, 4> p;
+    for (auto& x : p) x = Point3(coord(rng), coord(rng), coord(rng));
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) {
+        if (i == j) continue;
+        auto q = p;
+        q[j] = q[i];
+        ASSERT_EQ(g::orient3d(q[0], q[1], q[2], q[3]), 0) << i << j;
+        ASSERT_EQ(g::orient3d_exact(q[0], q[1], q[2], q[3]), 0) << i << j;
+        q[j].x() = std::nextafter(q[i].x(), 2.0);
+        // Replacing q[j] by the direction e_x, from q[i]: the sign of the
+        // determinant with that row (well away from zero for these points).
+        auto r = q;
+        r[j] = q[i] + Point3(1, 0, 0);
+        const Point3 o = r[0];
+        const double det = (r[1] - o).dot((r[2] - o).cross(r[3] - o));
+        if (std::abs(det) < 1e-3) continue;
+        ASSERT_EQ(g::orient3d(q[0], q[1], q[2], q[3]), det > 0 ? 1 : -1) << i << j;
+      }
+  }
 }
 
 TEST(Collinear, ExactOnCoincidentAndNearlyCollinearPoints) {
