@@ -58,7 +58,7 @@ class Energy {
   Energy(mesh::TetMesh& m, const std::vector<int>& free_index, int num_free, double power)
       : m_(m), free_(free_index), num_free_(num_free), power_(power), frames_(highorder::amips_frames(m.order)),
         points_(frames_.num_lattice_points()), np_(m.tet_nodes()), term_(m.num_tets()),
-        grad_(static_cast<std::size_t>(m.num_tets()) * np_) {
+        worst_(m.num_tets(), 0), grad_(static_cast<std::size_t>(m.num_tets()) * np_) {
     for (int t = 0; t < m.num_tets(); ++t)
       for (int i = 0; i < np_; ++i)
         if (free_[m.tets[t * np_ + i]] >= 0) {
@@ -85,6 +85,28 @@ class Energy {
   }
 
   int points() const { return static_cast<int>(tets_.size()) * points_; }
+  // After a finite evaluation: the largest of AMIPS / A0 and sJ0 / scaled
+  // Jacobian over its points (E's limit as p grows, up to the power).
+  double worst() const {
+    double w = 0;
+    for (int t : tets_) w = std::max(w, worst_[t]);
+    return w;
+  }
+  // Per free coordinate, the least h^2 over the tets with that node, h a
+  // tet's mean corner edge: E is scale-free, so its curvature in a node
+  // goes as 1 / h^2, and the smallest tet around a node bounds its step.
+  Eigen::VectorXd inverse_curvature() const {
+    Eigen::VectorXd c = Eigen::VectorXd::Constant(3 * num_free_, kInf);
+    for (int t : tets_) {
+      const int* v = &m_.tets[t * np_];
+      double h = 0;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) h += (m_.nodes[v[a]] - m_.nodes[v[b]]).norm() / 6;
+      for (int i = 0; i < np_; ++i)
+        if (const int f = free_[v[i]]; f >= 0) c.segment<3>(3 * f) = c.segment<3>(3 * f).cwiseMin(h * h);
+    }
+    return c;
+  }
   void set(const Eigen::VectorXd& x) {
     for (std::size_t n = 0; n < free_.size(); ++n)
       if (free_[n] >= 0) m_.nodes[n] = x.segment<3>(3 * free_[n]);
@@ -101,9 +123,10 @@ class Energy {
   double operator()(Eigen::VectorXd* grad) {
     infinite_ = false;
     for_tets([&](int t, std::vector<Mat3>& k, std::vector<Mat3>& dk, std::vector<Vec3>& g) {
-      double e = 0;
-      for (int q = 0; q < points_ && std::isfinite(e); ++q) e += point_energy(k[q], grad ? &dk[q] : nullptr);
+      double e = 0, w = 0;
+      for (int q = 0; q < points_ && std::isfinite(e); ++q) e += point_energy(k[q], grad ? &dk[q] : nullptr, w);
       term_[t] = e;
+      worst_[t] = w;
       if (!std::isfinite(e)) infinite_ = true;
       if (!grad || !std::isfinite(e)) return;
       frames_.node_gradients(dk.data(), g.data(), points_);
@@ -127,12 +150,14 @@ class Energy {
   // derivative by K. With J = K W and u_i = W e_i for the corner's edges
   // e_i, sJ = sqrt(2) det J / prod |K u_i|, so its term is r^(p/2) with
   // r = sJ0^2 prod |K u_i|^2 / (2 det J^2), and
-  // d log sJ / dK = K^-T - sum_i (K u_i) u_i^T / |K u_i|^2.
-  double point_energy(const Mat3& k, Mat3* dk) const {
+  // d log sJ / dK = K^-T - sum_i (K u_i) u_i^T / |K u_i|^2. Raises worst
+  // to the point's AMIPS / A0 and sJ0 / scaled Jacobian.
+  double point_energy(const Mat3& k, Mat3* dk, double& worst) const {
     const double det = k.determinant();
     if (!(det > 0)) return kInf;
     const double det23 = std::cbrt(det * det), norm2 = k.squaredNorm(), a = norm2 / det23;
     const double amips_term = power_of(a / amips_ref_, power_);
+    double worst_r = 0;
     double e = amips_term;
     const Mat3 k_inv_t = k.inverse().transpose();
     if (dk) *dk = (power_ * amips_term / a) / det23 * (2 * k - (2.0 / 3.0) * norm2 * k_inv_t);
@@ -151,10 +176,12 @@ class Energy {
     for (const auto& corner : highorder::AmipsFrames::kCornerEdges) {
       const double r = scale * length2[corner[0]] * length2[corner[1]] * length2[corner[2]];
       const double term = power_of(r, 0.5 * power_);
+      worst_r = std::max(worst_r, r);
       e += term;
       corner_terms += term;
       for (int i : corner) edge_weight[i] += term;
     }
+    worst = std::max({worst, a / amips_ref_, std::sqrt(worst_r)});
     if (dk) {
       *dk -= power_ * corner_terms * k_inv_t;
       for (int i = 0; i < 6; ++i) *dk += (power_ * edge_weight[i] / length2[i]) * ku[i] * edges[i].transpose();
@@ -206,29 +233,40 @@ class Energy {
   double amips_ref_ = 1, sj_ref_ = 1;
   std::vector<int> tets_; // tets with a free node
   std::atomic<bool> infinite_{false}; // a term of the evaluation under way is +inf
-  std::vector<double> term_;
+  std::vector<double> term_, worst_;
   std::vector<Vec3> grad_; // per tet and local node
 };
 
-// Minimizes e from the mesh's current free nodes (left at the best point
-// found); returns the iterations run.
+// Minimizes e from the mesh's current free nodes by L-BFGS, preconditioned
+// by e.inverse_curvature(); leaves the nodes at the iterate of least
+// e.worst() (E's descent does not lower the worst at every step); returns
+// the iterations run and sets energy to E there.
 int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy) {
   Eigen::VectorXd x = e.get(), g;
   energy = e(&g);
   if (!std::isfinite(energy) || g.size() == 0) return 0;
+  const Eigen::VectorXd m = e.inverse_curvature();
+  Eigen::VectorXd best_x = x;
+  double best_worst = e.worst(), best_energy = energy;
+  int best_at = 0;
   std::deque<std::pair<Eigen::VectorXd, Eigen::VectorXd>> pairs; // (s, y)
   std::vector<double> history{energy};
   int it = 0;
   for (; it < o.max_iterations; ++it) {
-    // Two-loop recursion: d = -H g.
+    // Two-loop recursion: d = -H g, H0 = gamma diag(m).
     Eigen::VectorXd d = -g;
     std::vector<double> alpha(pairs.size());
     for (int k = static_cast<int>(pairs.size()) - 1; k >= 0; --k) {
       alpha[k] = pairs[k].first.dot(d) / pairs[k].second.dot(pairs[k].first);
       d -= alpha[k] * pairs[k].second;
     }
-    if (!pairs.empty()) d *= pairs.back().first.dot(pairs.back().second) / pairs.back().second.squaredNorm();
-    else d *= 1e-3 * std::sqrt(static_cast<double>(x.size())) / std::max(g.norm(), 1e-300) * x.cwiseAbs().maxCoeff();
+    d = d.cwiseProduct(m);
+    if (!pairs.empty()) {
+      const auto& [s, y] = pairs.back();
+      d *= s.dot(y) / y.cwiseProduct(m).dot(y);
+    } else { // first step: a thousandth of the model's size over the nodes
+      d *= 1e-3 * std::sqrt(static_cast<double>(x.size())) / std::max(d.norm(), 1e-300) * x.cwiseAbs().maxCoeff();
+    }
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const double beta = pairs[k].second.dot(d) / pairs[k].second.dot(pairs[k].first);
       d += (alpha[k] - beta) * pairs[k].first;
@@ -243,10 +281,7 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy) {
       en = e(&gn);
       if (en <= energy + 1e-4 * step * slope) break;
     }
-    if (!(en < energy)) {
-      e.set(x);
-      break;
-    }
+    if (!(en < energy)) break;
     const Eigen::VectorXd s = xn - x, y = gn - g;
     if (s.dot(y) > 0) {
       pairs.emplace_back(s, y);
@@ -255,13 +290,22 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy) {
     x = std::move(xn);
     g = std::move(gn);
     energy = en;
+    if (const double w = e.worst(); w <= best_worst) { // E falls: the later of equals
+      if (w < best_worst) best_at = it + 1;
+      best_worst = w;
+      best_x = x;
+      best_energy = energy;
+    }
     history.push_back(energy);
     const int n = static_cast<int>(history.size());
-    if (n > o.window && history[n - 1 - o.window] - energy < o.min_decrease * history[n - 1 - o.window]) {
+    const bool e_stalled = n > o.window && history[n - 1 - o.window] - energy < o.min_decrease * history[n - 1 - o.window];
+    if (e_stalled || it + 1 - best_at >= o.worst_window) {
       ++it;
       break;
     }
   }
+  e.set(best_x);
+  energy = best_energy;
   return it;
 }
 
