@@ -23,8 +23,8 @@
 // tets.
 // Method: L-BFGS with a backtracking (Armijo) line search, its initial
 // inverse Hessian the diagonal of the least h^2 over a node's tets, h a
-// tet's size (E is scale-free: its curvature in a node goes as 1 / h^2;
-// without it bunny needs 150 iterations for what 100 give with it). The
+// tet's size (E is scale-free: its curvature in a node goes as 1 / h^2,
+// so one step length cannot suit small and large tets at once). The
 // result is the iterate of least worst term, max over points of AMIPS / A0
 // and J0 / sJ (E's limit as p grows: E can fall while the worst rises for a
 // few steps). Stops after max_iterations, when E falls by less than
