@@ -240,6 +240,19 @@ TEST(VolumeTetrahedralize, SchoenhardtPrismGetsAnInteriorSteinerPoint) {
   EXPECT_GE(r.interior.cones, 1u);
 }
 
+// thingi10k_44901: beside a strip of needle triangles (area 4e-20) the
+// solid is 1e-17 thick, so no Steiner point fits there and no cone closes
+// (the cavity grows into a whole part without kernel point). Its cavity
+// pieces are peeled instead (volume/peel_fill.hpp), with the surface's own
+// vertices only, and the fill must be exact.
+TEST(VolumeTetrahedralize, NeedleStripIsFilledByPeeling) {
+  const auto part = mesh::to_surface_mesh(
+      io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/thingi10k_44901.off"));
+  const auto r = expect_exact_by(part, false, true);
+  EXPECT_TRUE(r.interior.direct);
+  EXPECT_GT(r.interior.missing_triangles, r.interior.recovered_by_flips);
+}
+
 // Some triangles of the bunny stay missing after the flips, inside and
 // outside; the cones around them keep the fast path, which must still beat
 // TetGen's worst tet (123).

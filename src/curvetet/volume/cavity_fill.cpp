@@ -4,6 +4,7 @@
 #include "curvetet/geometry/predicates.hpp"
 #include "curvetet/volume/chebyshev_centre.hpp"
 #include "curvetet/volume/mesh_keys.hpp"
+#include "curvetet/volume/peel_fill.hpp"
 
 #include <CGAL/Gmpzf.h>
 #include <CGAL/QP_functions.h>
@@ -28,6 +29,12 @@ constexpr int kUnset = std::numeric_limits<int>::min();
 constexpr int kMaxGrowth = 24;
 constexpr int kMaxGrowthAnyBlocker = 12;
 constexpr std::size_t kMaxPieceFaces = 2000;
+// The largest piece worth peeling (peel_fill.hpp: each step costs a pass
+// over the front per candidate tried), the orders tried and the steps each
+// may take (backtracking included) per face of the piece.
+constexpr std::size_t kMaxPeelFaces = 200;
+constexpr int kPeelAttempts = 4;
+constexpr long kPeelStepsPerFace = 4;
 
 // Winding number of every tet outside the cavity, by crossing faces from
 // the hull (winding 0 beyond it); +1 when going against a triangle's outward
@@ -273,6 +280,36 @@ bool sees_all(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& fa
   });
 }
 
+// Peels a piece without kernel point (peel_fill.hpp). Where every attempt
+// gets stuck, what one leaves may still close with cones, each closed piece
+// of it from a kernel point (a twisted remainder, like Schönhardt's prism,
+// needs one). On success, appends the tets and the cones' apexes (ids
+// p.size() + their index in `steiner`).
+bool peel_piece(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces,
+                std::vector<mesh::Vec3>& steiner, std::vector<std::array<int, 4>>& tets) {
+  const int np = static_cast<int>(p.size());
+  for (const auto& attempt : peel_tetrahedralize(p, faces, kPeelStepsPerFace * static_cast<long>(faces.size()), kPeelAttempts)) {
+    std::vector<mesh::Vec3> apexes;
+    std::vector<std::array<int, 4>> cones;
+    const auto split = closed_pieces(p, attempt.rest);
+    if (!split.bad_edges.empty()) continue;
+    bool closed = true;
+    for (const auto& rest : split.pieces) {
+      const auto kernel = kernel_point(p, attempt.rest, rest);
+      if (!(closed = kernel.point.has_value())) break;
+      const int id = np + static_cast<int>(steiner.size() + apexes.size());
+      apexes.push_back(*kernel.point);
+      for (int i : rest) cones.push_back({attempt.rest[i][0], attempt.rest[i][1], attempt.rest[i][2], id});
+    }
+    if (!closed) continue;
+    tets.insert(tets.end(), attempt.tets.begin(), attempt.tets.end());
+    tets.insert(tets.end(), cones.begin(), cones.end());
+    steiner.insert(steiner.end(), apexes.begin(), apexes.end());
+    return true;
+  }
+  return false;
+}
+
 // A 64-bit mixer (splitmix64's finalizer): summed over a set's keys, it
 // names the set whatever its order.
 std::uint64_t mix(std::uint64_t x) {
@@ -287,11 +324,13 @@ std::uint64_t mix(std::uint64_t x) {
 // cavity growing until every piece has a kernel point: around edges where
 // two of its sectors meet, the tets there; behind the faces that hide a
 // piece's centre, the kept tets there (first those without a surface face
-// when `off_surface_first`). `too_big` tells a failure on kMaxPieceFaces.
+// when `off_surface_first`). With `peel`, a piece without a kernel point is
+// first peeled (no new point); it grows only when that gets stuck. `too_big`
+// tells a failure on kMaxPieceFaces.
 std::optional<SideTets> cone_cavity(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface,
                                     const std::vector<std::array<int, 4>>& face_of, const std::vector<int>& missing,
                                     std::vector<char> removed, const std::vector<int>& w, int keep,
-                                    bool off_surface_first, bool& too_big) {
+                                    bool off_surface_first, bool peel, bool& too_big) {
   too_big = false;
   const int nt = static_cast<int>(bg.tets.size());
   SideTets out;
@@ -326,6 +365,11 @@ std::optional<SideTets> cone_cavity(const BackgroundMesh& bg, const std::vector<
                               ? Kernel{known->second, {}}
                               : kernel_point(bg.points, faces, piece);
       if (kernel.point) apex_of[key] = *kernel.point;
+      if (!kernel.point && peel && piece.size() <= kMaxPeelFaces) {
+        std::vector<mesh::Tri> piece_faces;
+        for (int i : piece) piece_faces.push_back(faces[i]);
+        if (peel_piece(bg.points, piece_faces, out.steiner, cones)) continue;
+      }
       if (!kernel.point) {
         // The kept tets behind the faces that block the centre join the
         // cavity. Where only surface triangles block it (a kernel too thin
@@ -361,7 +405,7 @@ std::optional<SideTets> cone_cavity(const BackgroundMesh& bg, const std::vector<
     for (int t = 0; t < nt; ++t)
       if (!removed[t] && w[t] == keep) out.tets.push_back(bg.tets[t]);
     out.tets.insert(out.tets.end(), cones.begin(), cones.end());
-    logger().debug("volume: {} tets around {} missing triangles replaced by {} cones of {} tets ({} growth rounds)",
+    logger().debug("volume: {} tets around {} missing triangles replaced by {} pieces of {} tets ({} growth rounds)",
                    std::count(removed.begin(), removed.end(), 1), missing.size(), split.pieces.size(), cones.size(),
                    round);
     return out;
@@ -399,10 +443,14 @@ std::optional<SideTets> side_tets(const BackgroundMesh& bg, const std::vector<me
   // it in: sliver_anchor's pieces did past 12 rounds), growing away from
   // the surface first does. A piece grown past kMaxPieceFaces grew so in
   // the other order too on every good mesh (cheese_genus133: 1.2 s more).
+  // Where neither closes, pieces without a kernel point are peeled instead:
+  // on thingi10k_44901 the cavity grows into the whole main part, whose
+  // solid beside its needle triangles is thinner than any double point.
   bool too_big = false;
-  if (auto out = cone_cavity(bg, surface, face_of, missing, removed, w, keep, false, too_big)) return out;
-  if (too_big) return std::nullopt;
-  return cone_cavity(bg, surface, face_of, missing, removed, w, keep, true, too_big);
+  if (auto out = cone_cavity(bg, surface, face_of, missing, removed, w, keep, false, false, too_big)) return out;
+  if (!too_big)
+    if (auto out = cone_cavity(bg, surface, face_of, missing, removed, w, keep, true, false, too_big)) return out;
+  return cone_cavity(bg, surface, face_of, missing, removed, w, keep, false, true, too_big);
 }
 
 } // namespace curvetet::volume
