@@ -10,12 +10,14 @@
 #include <CGAL/QP_functions.h>
 #include <CGAL/QP_models.h>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
 #include <numeric>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 namespace curvetet::volume {
 namespace {
@@ -31,10 +33,13 @@ constexpr int kMaxGrowthAnyBlocker = 12;
 constexpr std::size_t kMaxPieceFaces = 2000;
 // The largest piece worth peeling (peel_fill.hpp: each step costs a pass
 // over the front per candidate tried), the orders tried and the steps each
-// may take (backtracking included) per face of the piece.
+// may take (backtracking included) per face of the piece; and the steps one
+// fill may spend on peeling in all (a scan has many pieces that no order
+// peels, each a few hundred steps).
 constexpr std::size_t kMaxPeelFaces = 200;
 constexpr int kPeelAttempts = 4;
 constexpr long kPeelStepsPerFace = 4;
+constexpr long kPeelStepsPerFill = 8192;
 
 // Winding number of every tet outside the cavity, by crossing faces from
 // the hull (winding 0 beyond it); +1 when going against a triangle's outward
@@ -280,34 +285,36 @@ bool sees_all(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& fa
   });
 }
 
+long peel_steps(std::size_t faces) { return kPeelStepsPerFace * static_cast<long>(faces); }
+
+// A piece filled by peeling: its tets, whose corners past the background's
+// points (ids np + k) are the apexes of the cones over what peeling left.
+struct PeeledPiece {
+  std::vector<std::array<int, 4>> tets;
+  std::vector<mesh::Vec3> apexes;
+};
+
 // Peels a piece without kernel point (peel_fill.hpp). Where every attempt
 // gets stuck, what one leaves may still close with cones, each closed piece
 // of it from a kernel point (a twisted remainder, like Schönhardt's prism,
-// needs one). On success, appends the tets and the cones' apexes (ids
-// p.size() + their index in `steiner`).
-bool peel_piece(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces,
-                std::vector<mesh::Vec3>& steiner, std::vector<std::array<int, 4>>& tets) {
+// needs one).
+std::optional<PeeledPiece> peel_piece(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces) {
   const int np = static_cast<int>(p.size());
-  for (const auto& attempt : peel_tetrahedralize(p, faces, kPeelStepsPerFace * static_cast<long>(faces.size()), kPeelAttempts)) {
-    std::vector<mesh::Vec3> apexes;
-    std::vector<std::array<int, 4>> cones;
+  for (const auto& attempt : peel_tetrahedralize(p, faces, peel_steps(faces.size()), kPeelAttempts)) {
     const auto split = closed_pieces(p, attempt.rest);
     if (!split.bad_edges.empty()) continue;
+    PeeledPiece out{attempt.tets, {}};
     bool closed = true;
     for (const auto& rest : split.pieces) {
       const auto kernel = kernel_point(p, attempt.rest, rest);
       if (!(closed = kernel.point.has_value())) break;
-      const int id = np + static_cast<int>(steiner.size() + apexes.size());
-      apexes.push_back(*kernel.point);
-      for (int i : rest) cones.push_back({attempt.rest[i][0], attempt.rest[i][1], attempt.rest[i][2], id});
+      const int id = np + static_cast<int>(out.apexes.size());
+      out.apexes.push_back(*kernel.point);
+      for (int i : rest) out.tets.push_back({attempt.rest[i][0], attempt.rest[i][1], attempt.rest[i][2], id});
     }
-    if (!closed) continue;
-    tets.insert(tets.end(), attempt.tets.begin(), attempt.tets.end());
-    tets.insert(tets.end(), cones.begin(), cones.end());
-    steiner.insert(steiner.end(), apexes.begin(), apexes.end());
-    return true;
+    if (closed) return out;
   }
-  return false;
+  return std::nullopt;
 }
 
 // A 64-bit mixer (splitmix64's finalizer): summed over a set's keys, it
@@ -336,6 +343,8 @@ std::optional<SideTets> cone_cavity(const BackgroundMesh& bg, const std::vector<
   SideTets out;
   const int np = static_cast<int>(bg.points.size());
   std::unordered_map<std::uint64_t, mesh::Vec3> apex_of; // by piece (its faces' keys, mixed)
+  std::unordered_map<std::uint64_t, std::optional<std::pair<std::vector<mesh::Tri>, std::optional<PeeledPiece>>>> peeled;
+  long peel_steps_left = kPeelStepsPerFill;
   for (int round = 0;; ++round) {
     if (round > (off_surface_first ? kMaxGrowth : kMaxGrowthAnyBlocker)) {
       logger().debug("volume: the cavity has a piece without kernel point or with pinched edges");
@@ -365,10 +374,26 @@ std::optional<SideTets> cone_cavity(const BackgroundMesh& bg, const std::vector<
                               ? Kernel{known->second, {}}
                               : kernel_point(bg.points, faces, piece);
       if (kernel.point) apex_of[key] = *kernel.point;
-      if (!kernel.point && peel && piece.size() <= kMaxPeelFaces) {
+      if (!kernel.point && peel && piece.size() <= kMaxPeelFaces && peel_steps_left > 0) {
+        // Pieces that did not grow are not peeled again (their faces in
+        // order: peeling is deterministic).
         std::vector<mesh::Tri> piece_faces;
         for (int i : piece) piece_faces.push_back(faces[i]);
-        if (peel_piece(bg.points, piece_faces, out.steiner, cones)) continue;
+        std::sort(piece_faces.begin(), piece_faces.end());
+        auto& tried = peeled[key];
+        if (!tried || tried->first != piece_faces) {
+          tried.emplace(piece_faces, peel_piece(bg.points, piece_faces));
+          peel_steps_left -= kPeelAttempts * peel_steps(piece.size());
+        }
+        if (const auto& filled = tried->second) {
+          const int shift = static_cast<int>(out.steiner.size());
+          for (auto t : filled->tets) {
+            for (int& v : t) v += v >= np ? shift : 0;
+            cones.push_back(t);
+          }
+          out.steiner.insert(out.steiner.end(), filled->apexes.begin(), filled->apexes.end());
+          continue;
+        }
       }
       if (!kernel.point) {
         // The kept tets behind the faces that block the centre join the

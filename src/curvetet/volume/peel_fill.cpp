@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace curvetet::volume {
 namespace {
@@ -224,6 +225,14 @@ struct Rank {
   }
 };
 
+// The same for the same four corners in any order.
+std::uint64_t tet_key(std::array<int, 4> t) {
+  std::sort(t.begin(), t.end());
+  std::uint64_t x = 0;
+  for (int v : t) x = x * 0x9e3779b97f4a7c15ull + static_cast<std::uint64_t>(v) + 1;
+  return x;
+}
+
 struct Candidate {
   double score;
   std::array<int, 4> tet;
@@ -240,10 +249,11 @@ void push_candidate(const Front& front, const std::vector<mesh::Vec3>& p, const 
 
 // A depth-first search over the candidates, best first: at each step the
 // ears (apex of a front face across an edge), or where none fits, any front
-// vertex over the first face that has one; up to kBranch fitting candidates
+// vertex near the first face that has one; up to kBranch fitting candidates
 // tried per step, `budget` steps in all. Keeps the deepest state reached
 // (fewest faces left) for the caller when no order closes the front.
 constexpr int kBranch = 2;
+constexpr std::size_t kNearest = 12;
 class Search {
 public:
   Search(const std::vector<mesh::Vec3>& p, const std::vector<mesh::Tri>& faces, const Rank& rank, long budget)
@@ -278,11 +288,13 @@ private:
   std::vector<std::pair<std::array<int, 4>, std::vector<int>>> fitting() {
     std::vector<std::pair<std::array<int, 4>, std::vector<int>>> out;
     std::vector<Candidate> candidates;
+    std::unordered_set<std::uint64_t> checked; // the same tet comes from each of its front faces
     auto take = [&] {
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
       for (const auto& c : candidates) {
         if (static_cast<int>(out.size()) == kBranch) break;
+        if (!checked.insert(tet_key(c.tet)).second) continue;
         if (auto consumed = front_.consumed_by(c.tet)) out.emplace_back(c.tet, std::move(*consumed));
       }
     };
@@ -300,9 +312,23 @@ private:
     for (int i = 0; i < front_.size() && out.empty(); ++i) {
       if (!front_.alive(i)) continue;
       candidates.clear();
-      for (int v : vertices) push_candidate(front_, p_, rank_, front_.face(i), v, candidates);
+      for (int v : nearest(vertices, front_.face(i))) push_candidate(front_, p_, rank_, front_.face(i), v, candidates);
       take();
     }
+    return out;
+  }
+
+  // The kNearest front vertices nearest face f's centroid (ties by id): a
+  // stuck front tries every face, and checking each vertex over each would
+  // cost most of a failed search.
+  std::vector<int> nearest(const std::vector<int>& vertices, const mesh::Tri& f) const {
+    const mesh::Vec3 c = (p_[f[0]] + p_[f[1]] + p_[f[2]]) / 3;
+    std::vector<std::pair<double, int>> by_distance;
+    for (int v : vertices) by_distance.emplace_back((p_[v] - c).squaredNorm(), v);
+    const auto n = std::min<std::size_t>(kNearest, by_distance.size());
+    std::partial_sort(by_distance.begin(), by_distance.begin() + n, by_distance.end());
+    std::vector<int> out;
+    for (std::size_t k = 0; k < n; ++k) out.push_back(by_distance[k].second);
     return out;
   }
 
