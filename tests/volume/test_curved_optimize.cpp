@@ -1,6 +1,7 @@
 // Curved optimization: lowers the max AMIPS, never moves a boundary node,
 // and keeps every tet certified positive.
 #include "curvetet/check/verify_tet_mesh.hpp"
+#include "curvetet/geometry/predicates.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/volume/curved_optimize.hpp"
 #include "curvetet/volume/curved_remesh.hpp"
@@ -146,4 +147,49 @@ TEST(CurvedRemesh, ThreadCountDoesNotChangeTheResult) {
   EXPECT_EQ(a.nodes, b.nodes);
   const auto v = check::verify_tet_mesh(b);
   EXPECT_TRUE(v.ok()) << v.text();
+}
+
+// A roof over a pyramid: the ridge (a, b) 0.01 above the eaves (c, d), apex
+// e below. The tet (a, b, c, d) has both roof triangles as boundary faces
+// (an ear, AMIPS 54) and all its corners on the boundary: no collapse or
+// smoothing can reshape it, only a vertex on its one interior edge (c, d).
+mesh::TetMesh roof_with_an_ear() {
+  mesh::TetMesh m;
+  m.order = 1;
+  m.nodes = {Vec3(-1, 0, 0.01), Vec3(1, 0, 0.01), Vec3(0, -1, 0), Vec3(0, 1, 0), Vec3(0, 0, -1.2)};
+  const int a = 0, b = 1, c = 2, d = 3, e = 4;
+  auto positive = [&](std::array<int, 4> t) {
+    if (geometry::orient3d(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]) < 0) std::swap(t[0], t[1]);
+    return t;
+  };
+  for (const auto& t : {positive({a, b, c, d}), positive({a, c, d, e}), positive({b, c, d, e})})
+    m.tets.insert(m.tets.end(), t.begin(), t.end());
+  // Outward: the roof up, the sides away from the pyramid's axis.
+  m.boundary = {a, c, b, a, b, d, a, e, c, c, e, b, b, e, d, d, e, a};
+  m.tet_tags.assign(3, mesh::kDomainTag);
+  m.boundary_tags.assign(6, mesh::kBoundaryTag);
+  mesh::set_default_groups(m);
+  return m;
+}
+
+TEST(CurvedRemesh, SplitsAnEarThatOnlyANewVertexCanFix) {
+  volume::CurvedRemeshOptions o;
+  o.flip = o.smooth = o.descend = false; // the splits alone (every vertex is frozen: no collapse)
+  {
+    auto m = roof_with_an_ear();
+    ASSERT_TRUE(check::verify_tet_mesh(m).ok()) << check::verify_tet_mesh(m).text();
+    const auto s = volume::remesh_curved(m, o);
+    EXPECT_GT(s.max_amips_before, 50);
+    EXPECT_GE(s.splits, 1);
+    EXPECT_LT(s.max_amips_after, o.ear_split_amips);
+    const auto v = check::verify_tet_mesh(m);
+    EXPECT_TRUE(v.ok()) << v.text();
+  }
+  {
+    auto m = roof_with_an_ear();
+    o.ear_split_amips = std::numeric_limits<double>::infinity(); // ears split only above split_amips, as tets
+    const auto s = volume::remesh_curved(m, o);
+    EXPECT_EQ(s.splits, 0);
+    EXPECT_GT(s.max_amips_after, 50);
+  }
 }

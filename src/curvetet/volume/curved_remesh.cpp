@@ -305,8 +305,12 @@ class Remesher {
         continue;
       }
       // Splits (the dearest: their vertex is placed by a search, and they
-      // add tets) only for very bad tets where nothing else helps.
-      if (e_.shape(t).max_amips <= o_.split_amips) {
+      // add tets) only for very bad tets where nothing else helps, or for
+      // ears above ear_split_amips: a tet with two boundary faces has one
+      // edge that is not on them, and only a new vertex on it gives each
+      // face a tet of its own.
+      const double amips = e_.shape(t).max_amips;
+      if (amips <= o_.split_amips && !(amips > o_.ear_split_amips && boundary_faces(t) >= 2)) {
         failed_at_[t] = commits_;
         continue;
       }
@@ -321,6 +325,13 @@ class Remesher {
       else failed_at_[t] = commits_;
     }
     return done;
+  }
+
+  int boundary_faces(int t) const {
+    const edit::Corners& c = e_.corners(t);
+    int n = 0;
+    for (int f = 0; f < 4; ++f) n += e_.is_boundary_face(c[(f + 1) % 4], c[(f + 2) % 4], c[(f + 3) % 4]);
+    return n;
   }
 
   // Coarsening pass: each free vertex, those with the shortest edge first,

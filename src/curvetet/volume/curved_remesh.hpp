@@ -11,7 +11,8 @@
 //     for each, every operation on its edges and faces is tried and the one
 //     whose new tets have the lowest max AMIPS is kept, if that is below the
 //     old star's max AMIPS; where none does and the tet is above
-//     split_amips, the same for the splits of its edges;
+//     split_amips (an ear, with two boundary faces: above
+//     ear_split_amips), the same for the splits of its edges;
 //  2. coarsening: each free vertex, those with the shortest edge first,
 //     collapses onto its best neighbour if the new tets stay under
 //     collapse_amips (or under the old star's max AMIPS, when higher);
@@ -43,7 +44,8 @@ struct CurvedRemeshOptions {
   double target_amips = 15;          // the quality pass visits tets above this...
   int max_quality_visits = 4096;     // ...the worst this many per round at most
   double collapse_amips = 30;        // a coarsening collapse may create tets up to this
-  double split_amips = 100;          // the quality pass splits edges of tets above this only
+  double split_amips = 100;          // the quality pass splits edges of tets above this only...
+  double ear_split_amips = 30;       // ...or of tets with two boundary faces (ears) above this
   double min_scaled_jacobian = 0.05; // floor (see above)
   bool collapse = true, flip = true, split = true, smooth = true, descend = true;
   CurvedOptimizeOptions smoothing = [] {
