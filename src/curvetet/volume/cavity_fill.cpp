@@ -317,16 +317,6 @@ std::optional<PeeledPiece> peel_piece(const std::vector<mesh::Vec3>& p, const st
   return std::nullopt;
 }
 
-// A 64-bit mixer (splitmix64's finalizer): summed over a set's keys, it
-// names the set whatever its order.
-std::uint64_t mix(std::uint64_t x) {
-  x ^= x >> 30;
-  x *= 0xbf58476d1ce4e5b9ull;
-  x ^= x >> 27;
-  x *= 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
-
 // The kept tets of side `keep` and the cones over the cavity's pieces, the
 // cavity growing until every piece has a kernel point: around edges where
 // two of its sectors meet, the tets there; behind the faces that hide a
@@ -368,7 +358,7 @@ std::optional<SideTets> cone_cavity(const BackgroundMesh& bg, const std::vector<
       }
       // Pieces that did not grow keep their point (an LP each is the cost).
       std::uint64_t key = piece.size();
-      for (int i : piece) key += mix(face_key(faces[i][0], faces[i][1], faces[i][2]));
+      for (int i : piece) key += mix64(face_key(faces[i][0], faces[i][1], faces[i][2])); // any order
       const auto known = apex_of.find(key);
       const auto kernel = known != apex_of.end() && sees_all(bg.points, faces, piece, known->second)
                               ? Kernel{known->second, {}}

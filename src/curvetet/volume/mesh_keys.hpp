@@ -1,7 +1,7 @@
 #pragma once
 // INTERNAL to volume/*.cpp. Small combinatorial helpers shared by the BSP
 // insertion, the optimizer and the Delaunay fill: hash keys of unordered
-// edges and triangles, and the vertex cycle around an edge.
+// edges and triangles, a mixer, and the vertex cycle around an edge.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -21,6 +21,16 @@ inline std::uint64_t face_key(int a, int b, int c) {
   std::sort(s, s + 3);
   return (static_cast<std::uint64_t>(s[0]) << 42) | (static_cast<std::uint64_t>(s[1]) << 21) |
          static_cast<std::uint64_t>(s[2]);
+}
+
+// A 64-bit mixer (splitmix64's finalizer): keys summed after it name a set
+// whatever its order; also a pseudo-random number seeded by a key.
+inline std::uint64_t mix64(std::uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ull;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
 }
 
 // The links (x, y) of the tets around an edge (their two other vertices)

@@ -214,13 +214,8 @@ struct Rank {
     const double s = shape(p, t);
     if (attempt == 0) return s;
     if (attempt == 1) return front.matches(t) + std::clamp(s, 0.0, 0.5);
-    std::uint64_t x = face_key(t[0], t[1], t[2]) * 31 + static_cast<std::uint64_t>(t[3]) +
-                      0x9e3779b97f4a7c15ull * static_cast<std::uint64_t>(attempt);
-    x ^= x >> 30;
-    x *= 0xbf58476d1ce4e5b9ull;
-    x ^= x >> 27;
-    x *= 0x94d049bb133111ebull;
-    x ^= x >> 31;
+    const std::uint64_t x = mix64(face_key(t[0], t[1], t[2]) * 31 + static_cast<std::uint64_t>(t[3]) +
+                                  0x9e3779b97f4a7c15ull * static_cast<std::uint64_t>(attempt));
     return s * (static_cast<double>(x >> 11) + 1) * 0x1p-53;
   }
 };
