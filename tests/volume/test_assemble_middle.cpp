@@ -6,6 +6,7 @@
 #include "curvetet/check/verify_tet_mesh.hpp"
 #include "curvetet/highorder/element_map.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
+#include "curvetet/io/read_surface.hpp"
 #include "curvetet/volume/assemble_middle.hpp"
 #include "curvetet/volume/tetrahedralize.hpp"
 #include "tet_shell.hpp"
@@ -92,4 +93,27 @@ TEST(AssembleMiddle, SingularCornerIsNeverRetracted) {
   EXPECT_EQ(stats.slab_tets, 9); // the 3 tets of pillar 0 have no volume
   const auto v = check::verify_tet_mesh(m, {});
   EXPECT_TRUE(v.ok()) << v.text();
+}
+
+// cheese_genus133's surface has no direct fill (cavity pieces without a
+// kernel point around its bubbles): as a flat middle surface (every vertex
+// pinched, so nothing retracts) it is filled by the layered fill instead of
+// sending the job to the slab assembly.
+TEST(AssembleMiddle, SurfaceWithoutDirectFillTakesTheLayeredFill) {
+  const auto cheese = mesh::to_surface_mesh(
+      io::read_surface(std::string(CURVETET_SHARED_DATA) + "/good/cheese_genus133.off"));
+  volume::CurvedMiddle s;
+  s.bottom = cheese.vertices;
+  s.faces = cheese.faces;
+  s.singular.assign(cheese.vertices.size(), 1);
+  for (const auto& f : cheese.faces) s.middle_nodes.push_back({cheese.vertices[f[0]], cheese.vertices[f[1]], cheese.vertices[f[2]]});
+  mesh::TetMesh m;
+  nlohmann::json report;
+  ASSERT_TRUE(volume::assemble_on_middle(s, 2, m, report)) << report.dump();
+  EXPECT_EQ(report["layered_fill_rounds"], 1);
+  EXPECT_EQ(report["slab_tets"], 0);
+  EXPECT_EQ(m.num_boundary(), static_cast<int>(cheese.faces.size()));
+  const auto v = check::verify_tet_mesh(m, {});
+  EXPECT_TRUE(v.ok()) << v.text();
+  EXPECT_EQ(v.positive, static_cast<std::size_t>(m.num_tets()));
 }

@@ -235,7 +235,7 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
 
   // The interior on the middle surface; the paper's assembly (fill inside
   // the bottom surface, every bottom slab) with --fill all or --slab-layer,
-  // or should the former have no Delaunay fill or some tet not certify
+  // or should the former have no fill or some tet not certify
   // (report "assembly_on_middle" then says which).
   bool assembled = false;
   if (o.fill == FillRegion::interior && !o.slab_layer) {
@@ -249,7 +249,7 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
       logger().info("the assembly on the middle surface {}; taking the slab assembly",
                     attempt.contains("uncertified_tets")
                         ? fmt::format("leaves {} tets uncertified", attempt["uncertified_tets"].get<int>())
-                        : "has no Delaunay fill");
+                        : "has no fill");
       report["assembly_on_middle"] = attempt;
     }
   }

@@ -1,5 +1,6 @@
 #include "curvetet/volume/assemble_middle.hpp"
 
+#include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
 #include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/element_map.hpp"
@@ -8,6 +9,7 @@
 #include "curvetet/shell/prism_tets.hpp"
 #include "curvetet/shell/slab_tet_nodes.hpp"
 #include "curvetet/volume/direct_fill.hpp"
+#include "curvetet/volume/tetrahedralize.hpp"
 #include "curvetet/volume/verify.hpp"
 
 #include <Eigen/SparseCholesky>
@@ -223,13 +225,14 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
   const int n = static_cast<int>(middle.bottom.size());
   std::vector<char> retracted(n, 0);
   AssemblyStats stats;
+  int layered_rounds = 0;
   for (int round = 0;; ++round) {
     const auto surface = retracted_surface(middle, retracted);
-    // Only the Delaunay fill, with interior grid points, else without (a
-    // grid point may fall in the circumsphere of a large surface triangle):
-    // where neither applies, the layered fill of each round would cost what
-    // the slab assembly's one does (abc_00000001: 57 s) and leave its thin
-    // layer anyway.
+    // The Delaunay fill, with interior grid points, else without (a grid
+    // point may fall in the circumsphere of a large surface triangle); where
+    // neither applies, the layered fill (offset layer and BSP, whose thin
+    // layer is the interior's and free to collapse in the curved
+    // optimization, unlike the slab assembly's bottom layer).
     std::optional<mesh::LinearTetMesh> filled;
     for (const double spacing : {kInteriorSpacing * mesh::mean_edge_length(surface), 0.0}) {
       FillOptions fo;
@@ -239,8 +242,16 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
       filled.reset();
     }
     if (!filled) {
-      report = {{"on", "middle"}, {"rounds", round + 1}, {"delaunay_fill", false}};
-      return false;
+      TetrahedralizeOptions to;
+      to.direct = false;
+      try {
+        filled = tetrahedralize(surface, to).mesh;
+        ++layered_rounds;
+      } catch (const Error& e) {
+        logger().debug("assembly on the middle surface, round {}: no fill ({})", round, e.what());
+        report = {{"on", "middle"}, {"rounds", round + 1}, {"fill", false}};
+        return false;
+      }
     }
     out = assemble_retracted(middle, retracted, *filled, order, &stats);
     int added = 0;
@@ -250,7 +261,7 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
       const auto count = std::count_if(retracted.begin(), retracted.end(), [](char c) { return c != 0; });
       report = {{"on", "middle"},   {"rounds", round + 1},          {"retracted_vertices", count},
                 {"fill_tets", stats.fill_tets}, {"slab_tets", stats.slab_tets}, {"boundary_triangles", stats.boundary_triangles},
-                {"uncertified_tets", bad}};
+                {"uncertified_tets", bad}, {"layered_fill_rounds", layered_rounds}};
       return bad == 0;
     }
   }

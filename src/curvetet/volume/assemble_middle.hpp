@@ -45,10 +45,11 @@ mesh::TetMesh assemble_retracted(const CurvedMiddle& shell, const std::vector<ch
 
 // The interior on the middle surface: assembled with nothing retracted,
 // then, while some tet is not certified positive, again with the surface
-// corners of those tets retracted. Fills with fill_direct() only (with
-// interior grid points, else without). Returns false, and `out` is not to
-// be used, when the Delaunay fill does not apply or a round retracts nothing
-// new while tets still fail (the caller then takes assemble_curved_mesh()).
+// corners of those tets retracted. Fills with fill_direct() (with interior
+// grid points, else without), else with the layered fill of
+// tetrahedralize(). Returns false, and `out` is not to be used, when no fill
+// verifies or a round retracts nothing new while tets still fail (the
+// caller then takes assemble_curved_mesh()).
 // `report`: rounds, retracted vertices, tets, or why it failed.
 bool assemble_on_middle(const CurvedMiddle& shell, int order, mesh::TetMesh& out, nlohmann::json& report);
 
