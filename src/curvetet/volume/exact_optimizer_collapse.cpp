@@ -1,0 +1,237 @@
+#include "curvetet/volume/exact_optimizer.hpp"
+
+#include "curvetet/core/error.hpp"
+#include "curvetet/core/log.hpp"
+#include "curvetet/geometry/predicates.hpp"
+#include "curvetet/highorder/quality.hpp"
+#include "curvetet/volume/mesh_keys.hpp"
+#include "curvetet/volume/tet_amips.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <fmt/format.h>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <set>
+
+namespace curvetet::volume::exact {
+
+double Optimizer::surface_collapse_cost(int v, int u) const {
+  double worst = 0;
+  bool shares = false;
+  for (int t : vt_[v]) {
+    const Tet& q = m_.tets[t];
+    if (std::find(q.begin(), q.end(), u) != q.end()) {
+      shares = true;
+      continue;
+    }
+    Tet n = q;
+    for (int& x : n)
+      if (x == v) x = u;
+    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return std::numeric_limits<double>::infinity();
+    worst = std::max(worst, energy(n));
+  }
+  if (!shares || !link_condition(u, v) || !boundary_link_condition(u, v))
+    return std::numeric_limits<double>::infinity();
+  return worst;
+}
+
+bool Optimizer::collapse_on_surface(int v, int u) {
+  std::vector<int> removed;
+  for (int t : vt_[v]) {
+    const Tet& q = m_.tets[t];
+    if (std::find(q.begin(), q.end(), u) != q.end()) {
+      removed.push_back(t);
+      continue;
+    }
+    Tet n = q;
+    for (int& x : n)
+      if (x == v) x = u;
+    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
+  }
+  if (removed.empty()) return false;
+  if (!link_condition(u, v) || !boundary_link_condition(u, v)) return false;
+  merge(v, u, removed);
+  pinned_[v] = 0;
+  ++stats_.collapses;
+  return true;
+}
+
+bool Optimizer::collapse(int v, int u, Keep keep) {
+  if (m_.frozen[v] || pinned(v) || u == v) return false;
+  double old_max = 0;
+  for (int t : vt_[v]) old_max = std::max(old_max, tet_energy(t));
+  const double bound = std::max(old_max, coarsen_energy_);
+  const bool require_quality = keep == Keep::quality;
+  // The new tets: energy first (cheap), exact orientation last.
+  std::vector<int> removed;
+  for (int t : vt_[v]) {
+    const Tet& q = m_.tets[t];
+    if (std::find(q.begin(), q.end(), u) != q.end()) {
+      removed.push_back(t);
+      continue;
+    }
+    Tet n = q;
+    for (int& x : n)
+      if (x == v) x = u;
+    if (require_quality) {
+      const double e = energy(n);
+      if (!(e <= bound)) return false;
+      // A tet on frozen vertices only can never be smoothed: keep it good.
+      if (e > std::max(kFrozenTetLimit, coarsen_energy_) && m_.frozen[n[0]] && m_.frozen[n[1]] && m_.frozen[n[2]] &&
+          m_.frozen[n[3]])
+        return false;
+      for (int x : n)
+        if (x != u && too_long(u, x) && !edge_exists(u, x)) return false;
+    } else if (keep == Keep::lower_max && !(energy(n) < old_max)) {
+      return false;
+    }
+    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
+  }
+  if (removed.empty()) return false; // not an edge
+  if (!link_condition(u, v)) return false;
+  merge(v, u, removed);
+  ++stats_.collapses;
+  return true;
+}
+
+void Optimizer::merge(int v, int u, const std::vector<int>& removed) {
+  for (int t : removed) kill(t);
+  ++clock_;
+  for (int t : std::vector<int>(vt_[v])) {
+    across_[t] = {-1, -1, -1, -1};
+    for (int& x : m_.tets[t])
+      if (x == v) x = u;
+    vt_[u].push_back(t);
+    energy_[t] = kStale;
+    for (int x : m_.tets[t]) touched_[x] = clock_;
+  }
+  vt_[v].clear();
+}
+
+std::vector<std::array<int, 2>> Optimizer::boundary_link(int x) const {
+  std::vector<std::array<int, 3>> faces;
+  for (int t : vt_[x]) {
+    const Tet& q = m_.tets[t];
+    for (int k = 0; k < 4; ++k) {
+      if (q[k] == x) continue;
+      std::array<int, 3> f;
+      int j = 0;
+      for (int i = 0; i < 4; ++i)
+        if (i != k) f[j++] = q[i];
+      std::sort(f.begin(), f.end());
+      faces.push_back(f);
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  std::vector<std::array<int, 2>> out;
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i;
+    while (j < faces.size() && faces[j] == faces[i]) ++j;
+    if (j - i == 1) {
+      std::array<int, 2> e;
+      int k = 0;
+      for (int y : faces[i])
+        if (y != x) e[k++] = y;
+      out.push_back(e);
+    }
+    i = j;
+  }
+  return out;
+}
+
+bool Optimizer::boundary_link_condition(int u, int v) const {
+  const auto bu = boundary_link(u), bv = boundary_link(v);
+  if (bu.empty() || bv.empty()) return true; // one is interior: no w in both
+  std::vector<int> pu, pv, puv;
+  for (const auto& e : bu) pu.insert(pu.end(), e.begin(), e.end());
+  for (const auto& e : bv) pv.insert(pv.end(), e.begin(), e.end());
+  for (const auto& e : bv)
+    if (e[0] == u || e[1] == u) puv.push_back(e[0] == u ? e[1] : e[0]);
+  if (puv.empty()) return false; // uv is not a boundary edge
+  for (auto* l : {&pu, &pv, &puv}) {
+    std::sort(l->begin(), l->end());
+    l->erase(std::unique(l->begin(), l->end()), l->end());
+  }
+  std::vector<int> common;
+  std::set_intersection(pu.begin(), pu.end(), pv.begin(), pv.end(), std::back_inserter(common));
+  for (int p : common)
+    if (p != u && p != v && !std::binary_search(puv.begin(), puv.end(), p)) return false;
+  auto su = bu, sv = bv;
+  std::sort(su.begin(), su.end());
+  std::sort(sv.begin(), sv.end());
+  std::vector<std::array<int, 2>> ce;
+  std::set_intersection(su.begin(), su.end(), sv.begin(), sv.end(), std::back_inserter(ce));
+  return ce.empty();
+}
+
+bool Optimizer::too_long(int a, int b) const {
+  return max_edge_length_ > 0 && (m_.v.d[a] - m_.v.d[b]).norm() > max_edge_length_;
+}
+
+bool Optimizer::link_condition(int u, int v) const {
+  // Scratch buffers reused across calls (this runs for every collapse).
+  auto& [tu, tv, ct] = link_tris_;
+  auto& [eu, ev, euv, ce] = link_edges_;
+  auto& [pu, pv, puv, cp] = link_verts_;
+  auto link = [&](int x, std::vector<std::array<int, 3>>& tris, std::vector<std::array<int, 2>>& edges,
+                  std::vector<int>& verts) {
+    tris.clear();
+    edges.clear();
+    verts.clear();
+    for (int t : vt_[x]) {
+      std::array<int, 3> f;
+      int j = 0;
+      for (int y : m_.tets[t])
+        if (y != x) f[j++] = y;
+      std::sort(f.begin(), f.end());
+      tris.push_back(f);
+      edges.push_back({f[0], f[1]});
+      edges.push_back({f[0], f[2]});
+      edges.push_back({f[1], f[2]});
+      verts.insert(verts.end(), f.begin(), f.end());
+    }
+    std::sort(tris.begin(), tris.end());
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  };
+  link(u, tu, eu, pu);
+  link(v, tv, ev, pv);
+  // lk(uv): opposite edges of the tets containing both.
+  euv.clear();
+  puv.clear();
+  for (int t : vt_[v]) {
+    const Tet& q = m_.tets[t];
+    if (std::find(q.begin(), q.end(), u) == q.end()) continue;
+    std::array<int, 2> e;
+    int j = 0;
+    for (int y : q)
+      if (y != u && y != v) e[j++] = y;
+    std::sort(e.begin(), e.end());
+    euv.push_back(e);
+    puv.push_back(e[0]);
+    puv.push_back(e[1]);
+  }
+  std::sort(euv.begin(), euv.end());
+  std::sort(puv.begin(), puv.end());
+  puv.erase(std::unique(puv.begin(), puv.end()), puv.end());
+  ct.clear();
+  std::set_intersection(tu.begin(), tu.end(), tv.begin(), tv.end(), std::back_inserter(ct));
+  if (!ct.empty()) return false;
+  ce.clear();
+  std::set_intersection(eu.begin(), eu.end(), ev.begin(), ev.end(), std::back_inserter(ce));
+  for (const auto& e : ce)
+    if (!std::binary_search(euv.begin(), euv.end(), e)) return false;
+  cp.clear();
+  std::set_intersection(pu.begin(), pu.end(), pv.begin(), pv.end(), std::back_inserter(cp));
+  for (int p : cp)
+    if (!std::binary_search(puv.begin(), puv.end(), p)) return false;
+  return true;
+}
+
+} // namespace curvetet::volume::exact
