@@ -48,6 +48,10 @@ class Optimizer {
   // Largest energy of the tets collapse_on_surface(v, u) would create, or
   // +inf when that collapse is not allowed.
   double surface_collapse_cost(int v, int u) const;
+  // The checks both share: every new tet positive, the link conditions;
+  // `removed`: v's tets on edge (v, u); `worst` (optional) raised to the
+  // largest energy of the new tets.
+  bool surface_collapse_allowed(int v, int u, std::vector<int>& removed, double* worst) const;
 
   bool collapse_on_surface(int v, int u);
 

@@ -1,46 +1,14 @@
 #include "curvetet/volume/exact_optimizer.hpp"
 
-#include "curvetet/core/error.hpp"
-#include "curvetet/core/log.hpp"
-#include "curvetet/geometry/predicates.hpp"
-#include "curvetet/highorder/quality.hpp"
-#include "curvetet/volume/mesh_keys.hpp"
-#include "curvetet/volume/tet_amips.hpp"
-
 #include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstdint>
-#include <fmt/format.h>
 #include <limits>
-#include <map>
-#include <numeric>
 #include <set>
+#include <vector>
 
 namespace curvetet::volume::exact {
 
-double Optimizer::surface_collapse_cost(int v, int u) const {
-  double worst = 0;
-  bool shares = false;
-  for (int t : vt_[v]) {
-    const Tet& q = m_.tets[t];
-    if (std::find(q.begin(), q.end(), u) != q.end()) {
-      shares = true;
-      continue;
-    }
-    Tet n = q;
-    for (int& x : n)
-      if (x == v) x = u;
-    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return std::numeric_limits<double>::infinity();
-    worst = std::max(worst, energy(n));
-  }
-  if (!shares || !link_condition(u, v) || !boundary_link_condition(u, v))
-    return std::numeric_limits<double>::infinity();
-  return worst;
-}
-
-bool Optimizer::collapse_on_surface(int v, int u) {
-  std::vector<int> removed;
+bool Optimizer::surface_collapse_allowed(int v, int u, std::vector<int>& removed, double* worst) const {
+  removed.clear();
   for (int t : vt_[v]) {
     const Tet& q = m_.tets[t];
     if (std::find(q.begin(), q.end(), u) != q.end()) {
@@ -51,9 +19,20 @@ bool Optimizer::collapse_on_surface(int v, int u) {
     for (int& x : n)
       if (x == v) x = u;
     if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
+    if (worst) *worst = std::max(*worst, energy(n));
   }
-  if (removed.empty()) return false;
-  if (!link_condition(u, v) || !boundary_link_condition(u, v)) return false;
+  return !removed.empty() && link_condition(u, v) && boundary_link_condition(u, v);
+}
+
+double Optimizer::surface_collapse_cost(int v, int u) const {
+  std::vector<int> removed;
+  double worst = 0;
+  return surface_collapse_allowed(v, u, removed, &worst) ? worst : std::numeric_limits<double>::infinity();
+}
+
+bool Optimizer::collapse_on_surface(int v, int u) {
+  std::vector<int> removed;
+  if (!surface_collapse_allowed(v, u, removed, nullptr)) return false;
   merge(v, u, removed);
   pinned_[v] = 0;
   ++stats_.collapses;

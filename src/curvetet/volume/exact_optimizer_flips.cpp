@@ -1,21 +1,10 @@
 #include "curvetet/volume/exact_optimizer.hpp"
 
-#include "curvetet/core/error.hpp"
-#include "curvetet/core/log.hpp"
-#include "curvetet/geometry/predicates.hpp"
-#include "curvetet/highorder/quality.hpp"
 #include "curvetet/volume/mesh_keys.hpp"
 #include "curvetet/volume/tet_amips.hpp"
 
 #include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstdint>
-#include <fmt/format.h>
-#include <limits>
-#include <map>
-#include <numeric>
-#include <set>
+#include <vector>
 
 namespace curvetet::volume::exact {
 

@@ -2,10 +2,8 @@
 
 #include "curvetet/core/error.hpp"
 #include "curvetet/core/log.hpp"
-#include "curvetet/geometry/predicates.hpp"
 #include "curvetet/highorder/quality.hpp"
 #include "curvetet/volume/exact_optimizer.hpp"
-#include "curvetet/volume/mesh_keys.hpp"
 #include "curvetet/volume/tet_amips.hpp"
 
 #include <algorithm>
@@ -15,7 +13,6 @@
 #include <fmt/format.h>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <set>
 
 namespace curvetet::volume::exact {
