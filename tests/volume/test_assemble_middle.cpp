@@ -117,15 +117,3 @@ TEST(AssembleMiddle, SurfaceWithoutDirectFillTakesTheLayeredFill) {
   EXPECT_TRUE(v.ok()) << v.text();
   EXPECT_EQ(v.positive, static_cast<std::size_t>(m.num_tets()));
 }
-
-// From the fifth round on, a retracted corner takes its surface neighbours
-// with it; a singular neighbour stays (it has no pillar).
-TEST(AssembleMiddle, RetractRingsMarksTheNeighboursOfNewlyRetractedVertices) {
-  auto s = tet_shell(0.1, true); // vertex 0 singular
-  std::vector<char> retracted = {0, 1, 0, 0};
-  EXPECT_EQ(volume::retract_rings(s, {0, 0, 0, 0}, retracted), 2);
-  EXPECT_EQ(retracted, (std::vector<char>{0, 1, 1, 1}));
-  std::vector<char> again = {0, 1, 0, 0};
-  EXPECT_EQ(volume::retract_rings(s, {0, 1, 0, 0}, again), 0); // nothing new since `before`
-  EXPECT_EQ(again, (std::vector<char>{0, 1, 0, 0}));
-}

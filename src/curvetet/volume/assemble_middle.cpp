@@ -70,10 +70,6 @@ void spread_displacement(mesh::TetMesh& m, const std::vector<mesh::Vec3>& straig
 // boundary edges apart, so that the interior refines with the surface too.
 constexpr double kInteriorSpacing = 2;
 
-// Rounds that retract only the corners of the tets that fail; later rounds
-// also retract their rings (assemble_on_middle).
-constexpr int kCornerOnlyRounds = 4;
-
 // Marks for retraction the surface corners (ids < n) of the tets the
 // certificate does not prove positive; returns how many tets those are and
 // (in *added) how many corners it marked.
@@ -95,22 +91,6 @@ int retract_uncertified(const mesh::TetMesh& m, int n, std::vector<char>& retrac
 }
 
 } // namespace
-
-int retract_rings(const CurvedMiddle& s, const std::vector<char>& before, std::vector<char>& retracted) {
-  std::vector<char> grown = retracted;
-  int added = 0;
-  for (const auto& f : s.faces)
-    for (int i = 0; i < 3; ++i)
-      if (retracted[f[i]] && !before[f[i]])
-        for (int j = 0; j < 3; ++j)
-          if (!grown[f[j]] && !s.singular[f[j]]) {
-            grown[f[j]] = 1;
-            ++added;
-          }
-  retracted = std::move(grown);
-  return added;
-}
-
 
 mesh::SurfaceMesh retracted_surface(const CurvedMiddle& s, const std::vector<char>& retracted) {
   mesh::SurfaceMesh m;
@@ -275,14 +255,7 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
     }
     out = assemble_retracted(middle, retracted, *filled, order, &stats);
     int added = 0;
-    const auto before = retracted;
     const int bad = retract_uncertified(out, n, retracted, &added);
-    // A region still failing after kCornerOnlyRounds is one whose patches
-    // sag into the tets under them: retracting a corner at a time steps S
-    // between middle and bottom there, and the fill of a stepped S is thin
-    // tets the curved optimization cannot undo (cad_freecad_MSOP_10: max
-    // AMIPS 146.6 this way, 67.4 with rings). Its ring goes too.
-    if (round >= kCornerOnlyRounds && added > 0) added += retract_rings(middle, before, retracted);
     logger().debug("assembly on the middle surface, round {}: {} tets not certified", round, bad);
     if (bad == 0 || added == 0) {
       const auto count = std::count_if(retracted.begin(), retracted.end(), [](char c) { return c != 0; });

@@ -35,11 +35,6 @@ namespace curvetet::volume {
 // else at the corner of the middle patches; the shell's faces.
 mesh::SurfaceMesh retracted_surface(const CurvedMiddle& shell, const std::vector<char>& retracted);
 
-// Marks the surface neighbours of every vertex marked in `retracted` but
-// not in `before` (singular ones excepted: they have no pillar); returns
-// how many it marked.
-int retract_rings(const CurvedMiddle& shell, const std::vector<char>& before, std::vector<char>& retracted);
-
 // `fill` tetrahedralizes the inside of retracted_surface(shell, retracted):
 // its vertices [0, n) are that surface's (same ids, same positions), its
 // boundary faces exactly the shell's faces. Boundary triangle i of the
@@ -50,8 +45,7 @@ mesh::TetMesh assemble_retracted(const CurvedMiddle& shell, const std::vector<ch
 
 // The interior on the middle surface: assembled with nothing retracted,
 // then, while some tet is not certified positive, again with the surface
-// corners of those tets retracted (from the fifth round on, with their
-// surface neighbours). Fills with fill_direct() (with interior
+// corners of those tets retracted. Fills with fill_direct() (with interior
 // grid points, else without), else with the layered fill of
 // tetrahedralize(). Returns false, and `out` is not to be used, when no fill
 // verifies or a round retracts nothing new while tets still fail (the
