@@ -13,7 +13,9 @@
 #include "curvetet/volume/exact_mesh.hpp"
 #include "curvetet/volume/fill.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
