@@ -7,6 +7,14 @@
 
 namespace curvetet::volume::exact {
 
+namespace {
+// Tet q with its corner v at u instead.
+Tet moved(Tet q, int v, int u) {
+  std::replace(q.begin(), q.end(), v, u);
+  return q;
+}
+} // namespace
+
 bool Optimizer::surface_collapse_allowed(int v, int u, std::vector<int>& removed, double* worst) const {
   removed.clear();
   for (int t : vt_[v]) {
@@ -15,9 +23,7 @@ bool Optimizer::surface_collapse_allowed(int v, int u, std::vector<int>& removed
       removed.push_back(t);
       continue;
     }
-    Tet n = q;
-    for (int& x : n)
-      if (x == v) x = u;
+    const Tet n = moved(q, v, u);
     if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
     if (worst) *worst = std::max(*worst, energy(n));
   }
@@ -53,9 +59,7 @@ bool Optimizer::collapse(int v, int u, Keep keep) {
       removed.push_back(t);
       continue;
     }
-    Tet n = q;
-    for (int& x : n)
-      if (x == v) x = u;
+    const Tet n = moved(q, v, u);
     if (require_quality) {
       const double e = energy(n);
       if (!(e <= bound)) return false;
