@@ -7,9 +7,8 @@
 //   exact_optimizer_collapse.cpp  collapses and their link conditions
 //   exact_optimizer_flips.cpp     2-3, 3-2 flips and edge removal
 //   exact_optimizer_insert.cpp    splits, insertions, cavities
-// and the schedule (passes, round_and_optimize) in optimize.cpp.
-// Every operation is a transaction: build the new star, check every new tet
-// positive with exact orient3d, commit or drop.
+// and the schedule (passes, round_and_optimize) in optimize.cpp. What every
+// operation keeps: optimize.hpp.
 #include "curvetet/volume/exact_mesh.hpp"
 #include "curvetet/volume/fill.hpp"
 

@@ -6,7 +6,8 @@
 // positive with exact orient3d (rational where a vertex is not yet rounded),
 // commit or drop. Frozen vertices never move and are never collapsed away, so
 // the boundary faces never change (a collapse or flip never touches a
-// boundary face: see the checks in optimize.cpp).
+// boundary face: see the checks in exact_optimizer_collapse.cpp and
+// exact_optimizer_flips.cpp).
 #include "curvetet/mesh/linear_tet_mesh.hpp"
 #include "curvetet/volume/exact_mesh.hpp"
 #include "curvetet/volume/fill.hpp"
