@@ -80,3 +80,21 @@ TEST(CurvedDescent, OnlyTheWorstTetsAndTheirRingsMove) {
   ASSERT_TRUE(v.ok()) << v.text();
   EXPECT_LT(v.worst_amips, q.worst_amips);
 }
+
+TEST(CurvedDescent, LongerRunsAreNeverWorseAtTheirWorst) {
+  // The worst falls in bursts: a run allowed more iterations ends at least
+  // as good as a short one (the long run checks its best iterate every
+  // checkpoint_iterations and keeps the last that passed), and certified.
+  auto shorter = test::flat_inner_tet_mesh(4), longer = shorter;
+  volume::CurvedDescentOptions o;
+  o.max_iterations = 20;
+  volume::descend_curved(shorter, o);
+  o.max_iterations = 1000;
+  o.checkpoint_iterations = 20;
+  const auto stats = volume::descend_curved(longer, o);
+  EXPECT_GT(stats.iterations, 20);
+  const auto s = check::verify_tet_mesh(shorter), l = check::verify_tet_mesh(longer);
+  ASSERT_TRUE(l.ok()) << l.text();
+  EXPECT_LE(l.worst_amips, s.worst_amips);
+  EXPECT_GE(l.worst_scaled_jacobian, s.worst_scaled_jacobian);
+}

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -240,8 +241,12 @@ class Energy {
 // Minimizes e from the mesh's current free nodes by L-BFGS, preconditioned
 // by e.inverse_curvature(); leaves the nodes at the iterate of least
 // e.worst() (E's descent does not lower the worst at every step); returns
-// the iterations run and sets energy to E there.
-int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy) {
+// the iterations run and sets energy to E there. Every
+// o.checkpoint_iterations, that iterate, if new, is checked with
+// `acceptable` (on the mesh's nodes); when the last iterate fails it, the
+// nodes are left at the last that passed, so a long run is never worse
+// than a check it passed on the way.
+int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::function<bool()>& acceptable) {
   Eigen::VectorXd x = e.get(), g;
   energy = e(&g);
   if (!std::isfinite(energy) || g.size() == 0) return 0;
@@ -251,6 +256,14 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy) {
   int best_at = 0;
   std::deque<std::pair<Eigen::VectorXd, Eigen::VectorXd>> pairs; // (s, y)
   std::vector<double> history{energy};
+  std::vector<double> best_history{best_worst}; // best_worst after each iteration
+  std::optional<std::pair<Eigen::VectorXd, double>> passed; // (iterate, E) of the last check passed
+  int checked_at = 0;                                       // best_at when last checked
+  const auto check_best = [&] {
+    checked_at = best_at;
+    e.set(best_x);
+    if (acceptable()) passed.emplace(best_x, best_energy);
+  };
   int it = 0;
   for (; it < o.max_iterations; ++it) {
     // Two-loop recursion: d = -H g, H0 = gamma diag(m).
@@ -297,12 +310,24 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy) {
       best_energy = energy;
     }
     history.push_back(energy);
+    if ((it + 1) % o.checkpoint_iterations == 0 && best_at > checked_at) {
+      check_best();
+      e.set(x);
+    }
+    best_history.push_back(best_worst);
     const int n = static_cast<int>(history.size());
     const bool e_stalled = n > o.window && history[n - 1 - o.window] - energy < o.min_decrease * history[n - 1 - o.window];
-    if (e_stalled || it + 1 - best_at >= o.worst_window) {
+    const bool worst_stalled = n > o.worst_window && best_history[n - 1 - o.worst_window] - best_worst <
+                                                         o.min_worst_decrease * best_history[n - 1 - o.worst_window];
+    if (e_stalled || worst_stalled) {
       ++it;
       break;
     }
+  }
+  if (passed && best_at > checked_at) check_best();
+  if (passed && passed->first != best_x) {
+    best_x = passed->first;
+    best_energy = passed->second;
   }
   e.set(best_x);
   energy = best_energy;
@@ -399,7 +424,7 @@ CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& 
       energy.emplace(m, free_index, free_nodes, o.power);
     }
     double e = 0;
-    s.iterations += lbfgs(*energy, o, e);
+    s.iterations += lbfgs(*energy, o, e, [&] { return failing(touched).empty(); });
     s.energy_after = e / energy->points();
     // A tet that fails the acceptance gets its nodes back and keeps them;
     // the others go on from where they are.

@@ -28,8 +28,11 @@
 // result is the iterate of least worst term, max over points of AMIPS / A0
 // and J0 / sJ (E's limit as p grows: E can fall while the worst rises for a
 // few steps). Stops after max_iterations, when E falls by less than
-// min_decrease over `window` iterations, or when the worst has not fallen
-// for worst_window iterations.
+// min_decrease over `window` iterations, or when the least worst falls by
+// less than min_worst_decrease over worst_window iterations (it falls in
+// bursts, often hundreds of iterations in: fertility's halves by 400).
+// Every checkpoint_iterations the least-worst iterate is checked as below;
+// if the last one fails, the descent ends on the last that passed.
 // Acceptance: every tet with a moved node is certified
 // (highorder::certify_tet; undecided = not positive) and measured on every
 // sample of the convention. A tet that is not positive, exceeds the input's
@@ -51,11 +54,13 @@ namespace curvetet::volume {
 
 struct CurvedDescentOptions {
   double power = 8;
-  int max_iterations = 100;
+  int max_iterations = 1000;
+  int checkpoint_iterations = 100;   // the best iterate so far is checked this often (see lbfgs)
   int memory = 8;                    // L-BFGS pairs kept
   int window = 10;                   // iterations over which...
   double min_decrease = 0.01;        // ...E must fall by this fraction to go on
-  int worst_window = 40;             // stops when the worst has not fallen for this many iterations
+  int worst_window = 150;            // stops when over this many iterations...
+  double min_worst_decrease = 0.01;  // ...the least worst has fallen by less than this fraction
   double min_scaled_jacobian = 0.05; // floor (see above)
   double active_ratio = 0.5;         // moves the tets within this ratio of the worst AMIPS or scaled J...
   int rings = 1;                     // ...and these layers of tets around them
