@@ -245,8 +245,11 @@ class Energy {
 // o.checkpoint_iterations, that iterate, if new, is checked with
 // `acceptable` (on the mesh's nodes); when the last iterate fails it, the
 // nodes are left at the last that passed, so a long run is never worse
-// than a check it passed on the way.
-int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::function<bool()>& acceptable) {
+// than a check it passed on the way. Sets `passes` when the iterate left
+// is one that passed (the caller need not check it again).
+int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::function<bool()>& acceptable,
+          bool& passes) {
+  passes = false;
   Eigen::VectorXd x = e.get(), g;
   energy = e(&g);
   if (!std::isfinite(energy) || g.size() == 0) return 0;
@@ -325,9 +328,12 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
     }
   }
   if (passed && best_at > checked_at) check_best();
-  if (passed && passed->first != best_x) {
-    best_x = passed->first;
-    best_energy = passed->second;
+  if (passed) {
+    passes = true;
+    if (passed->first != best_x) {
+      best_x = passed->first;
+      best_energy = passed->second;
+    }
   }
   e.set(best_x);
   energy = best_energy;
@@ -424,11 +430,12 @@ CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& 
       energy.emplace(m, free_index, free_nodes, o.power);
     }
     double e = 0;
-    s.iterations += lbfgs(*energy, o, e, [&] { return failing(touched).empty(); });
+    bool passes = false;
+    s.iterations += lbfgs(*energy, o, e, [&] { return failing(touched).empty(); }, passes);
     s.energy_after = e / energy->points();
     // A tet that fails the acceptance gets its nodes back and keeps them;
     // the others go on from where they are.
-    const std::vector<int> bad = failing(touched);
+    const std::vector<int> bad = passes ? std::vector<int>{} : failing(touched);
     if (bad.empty()) {
       touched.clear();
       break;
