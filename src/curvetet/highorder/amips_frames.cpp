@@ -1,5 +1,6 @@
 #include "curvetet/highorder/amips_frames.hpp"
 
+#include "curvetet/core/wide_vectors.hpp"
 #include "curvetet/highorder/bernstein.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/highorder/quality.hpp"
@@ -13,14 +14,9 @@
 #include <mutex>
 #include <stdexcept>
 
-// The two products below are most of the optimizer's arithmetic: on x86-64
-// they also get an AVX2 version, chosen at load time. Each sum keeps its
-// order of operations (no FMA), so both versions give the same bits.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define CURVETET_WIDE_VECTORS __attribute__((target_clones("avx2", "default")))
-#else
-#define CURVETET_WIDE_VECTORS
-#endif
+// The two products below are most of the optimizer's arithmetic: they get
+// a wide-vector version; each sum keeps its order of operations, so both
+// versions give the same bits.
 
 namespace curvetet::highorder {
 

@@ -5,6 +5,7 @@
 #include "curvetet/highorder/jacobian_certificate.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/highorder/quality.hpp"
+#include "curvetet/volume/descent_terms.hpp"
 
 #include <Eigen/Dense>
 #include <tbb/blocked_range.h>
@@ -56,10 +57,12 @@ std::vector<char> pinned_nodes(const mesh::TetMesh& m) {
 // parallel, summed in tet order.
 class Energy {
  public:
-  Energy(mesh::TetMesh& m, const std::vector<int>& free_index, int num_free, double power)
-      : m_(m), free_(free_index), num_free_(num_free), power_(power), frames_(highorder::amips_frames(m.order)),
+  Energy(mesh::TetMesh& m, const std::vector<int>& free_index, int num_free, int power, double gradient_weight)
+      : m_(m), free_(free_index), num_free_(num_free),
+        gradient_floor_(std::pow(gradient_weight, 1.0 / power)),
+        frames_(highorder::amips_frames(m.order)),
         points_(frames_.num_lattice_points()), np_(m.tet_nodes()), term_(m.num_tets()),
-        worst_(m.num_tets(), 0), grad_(static_cast<std::size_t>(m.num_tets()) * np_) {
+        worst_(m.num_tets(), 0), has_gradient_(m.num_tets(), 0), grad_(static_cast<std::size_t>(m.num_tets()) * np_) {
     for (int t = 0; t < m.num_tets(); ++t)
       for (int i = 0; i < np_; ++i)
         if (free_[m.tets[t * np_ + i]] >= 0) {
@@ -81,8 +84,11 @@ class Energy {
       worst = std::max(worst, term_[t]);
       least_sj = std::min(least_sj, worst_sj[t]);
     }
-    amips_ref_ = std::isfinite(worst) && worst > 0 ? worst : 1;
-    sj_ref_ = least_sj > 0 && std::isfinite(least_sj) ? least_sj : 1;
+    terms_.amips_ref = std::isfinite(worst) && worst > 0 ? worst : 1;
+    terms_.sj_ref = least_sj > 0 && std::isfinite(least_sj) ? least_sj : 1;
+    terms_.edges = frames_.edges();
+    terms_.reference_det = frames_.reference_to_regular().determinant();
+    terms_.power = power;
   }
 
   int points() const { return static_cast<int>(tets_.size()) * points_; }
@@ -123,13 +129,21 @@ class Energy {
   // with `grad`, also its gradient.
   double operator()(Eigen::VectorXd* grad) {
     infinite_ = false;
+    // Tets whose worst point weighed less than gradient_weight of the worst
+    // one's at the last evaluation (1e-3 at p = 8: below 0.42 x the worst)
+    // add nothing to the gradient that L-BFGS could see, yet most moved
+    // tets are such: they get no gradient; their terms still count in E
+    // (and +inf keeps every iterate positive).
+    const double floor = grad ? gradient_floor_ * worst() : kInf;
     for_tets([&](int t, std::vector<Mat3>& k, std::vector<Mat3>& dk, std::vector<Vec3>& g) {
-      double e = 0, w = 0;
-      for (int q = 0; q < points_ && std::isfinite(e); ++q) e += point_energy(k[q], grad ? &dk[q] : nullptr, w);
+      const bool with_gradient = grad && worst_[t] >= floor;
+      double w = 0;
+      const double e = terms_(k.data(), points_, with_gradient ? dk.data() : nullptr, w);
       term_[t] = e;
       worst_[t] = w;
+      has_gradient_[t] = with_gradient && std::isfinite(e);
       if (!std::isfinite(e)) infinite_ = true;
-      if (!grad || !std::isfinite(e)) return;
+      if (!has_gradient_[t]) return;
       frames_.node_gradients(dk.data(), g.data(), points_);
       std::copy(g.begin(), g.end(), grad_.begin() + static_cast<std::ptrdiff_t>(t) * np_);
     });
@@ -137,69 +151,16 @@ class Energy {
     for (int t : tets_) e += term_[t];
     if (!grad || !std::isfinite(e)) return e;
     grad->setZero(3 * num_free_);
-    for (int t : tets_)
+    for (int t : tets_) {
+      if (!has_gradient_[t]) continue;
       for (int i = 0; i < np_; ++i)
         if (const int f = free_[m_.tets[t * np_ + i]]; f >= 0)
           grad->segment<3>(3 * f) += grad_[static_cast<std::size_t>(t) * np_ + i];
+    }
     return e;
   }
 
  private:
-  // The terms of one point with frame K: (AMIPS / A0)^p and, for each
-  // corner frame, (sJ0 / scaled Jacobian)^p (AMIPS alone lets a corner
-  // frame's angle close while the frame's shape improves); with dk, their
-  // derivative by K. With J = K W and u_i = W e_i for the corner's edges
-  // e_i, sJ = sqrt(2) det J / prod |K u_i|, so its term is r^(p/2) with
-  // r = sJ0^2 prod |K u_i|^2 / (2 det J^2), and
-  // d log sJ / dK = K^-T - sum_i (K u_i) u_i^T / |K u_i|^2. Raises worst
-  // to the point's AMIPS / A0 and sJ0 / scaled Jacobian.
-  double point_energy(const Mat3& k, Mat3* dk, double& worst) const {
-    const double det = k.determinant();
-    if (!(det > 0)) return kInf;
-    const double det23 = std::cbrt(det * det), norm2 = k.squaredNorm(), a = norm2 / det23;
-    const double amips_term = power_of(a / amips_ref_, power_);
-    double worst_r = 0;
-    double e = amips_term;
-    const Mat3 k_inv_t = k.inverse().transpose();
-    if (dk) *dk = (power_ * amips_term / a) / det23 * (2 * k - (2.0 / 3.0) * norm2 * k_inv_t);
-    const double det_j = det * frames_.reference_to_regular().determinant();
-    const double scale = sj_ref_ * sj_ref_ / (2 * det_j * det_j);
-    // The six edges once; each corner's term from the three it holds, and
-    // each edge's part of the gradient once, weighted by its two corners' terms.
-    const auto& edges = frames_.edges();
-    Vec3 ku[6];
-    double length2[6];
-    for (int i = 0; i < 6; ++i) {
-      ku[i] = k * edges[i];
-      length2[i] = ku[i].squaredNorm();
-    }
-    double corner_terms = 0, edge_weight[6] = {};
-    for (const auto& corner : highorder::AmipsFrames::kCornerEdges) {
-      const double r = scale * length2[corner[0]] * length2[corner[1]] * length2[corner[2]];
-      const double term = power_of(r, 0.5 * power_);
-      worst_r = std::max(worst_r, r);
-      e += term;
-      corner_terms += term;
-      for (int i : corner) edge_weight[i] += term;
-    }
-    worst = std::max({worst, a / amips_ref_, std::sqrt(worst_r)});
-    if (dk) {
-      *dk -= power_ * corner_terms * k_inv_t;
-      for (int i = 0; i < 6; ++i) *dk += (power_ * edge_weight[i] / length2[i]) * ku[i] * edges[i].transpose();
-    }
-    return e;
-  }
-
-  // x^p, by squarings for the small integer powers the energy uses.
-  static double power_of(double x, double p) {
-    if (p == 4) return (x * x) * (x * x);
-    if (p == 8) {
-      const double x4 = (x * x) * (x * x);
-      return x4 * x4;
-    }
-    return std::pow(x, p);
-  }
-
   static double amips(const Mat3& k) {
     const double det = k.determinant();
     return det > 0 ? k.squaredNorm() / std::cbrt(det * det) : kInf;
@@ -228,13 +189,14 @@ class Energy {
   mesh::TetMesh& m_;
   const std::vector<int>& free_;
   int num_free_;
-  double power_;
+  double gradient_floor_; // x worst(): tets below it get no gradient (see operator())
   const highorder::AmipsFrames& frames_;
   int points_, np_;
-  double amips_ref_ = 1, sj_ref_ = 1;
+  DescentTerms terms_;
   std::vector<int> tets_; // tets with a free node
   std::atomic<bool> infinite_{false}; // a term of the evaluation under way is +inf
   std::vector<double> term_, worst_;
+  std::vector<char> has_gradient_;
   std::vector<Vec3> grad_; // per tet and local node
 };
 
@@ -421,13 +383,13 @@ CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& 
     }
     if (round == 0) s.free_nodes = free_nodes;
     if (free_nodes == 0) break;
-    std::optional<Energy> energy(std::in_place, m, free_index, free_nodes, o.power);
+    std::optional<Energy> energy(std::in_place, m, free_index, free_nodes, o.power, o.gradient_weight);
     if (round == 0) s.energy_before = (*energy)(nullptr) / energy->points();
     // Held nodes put back can invert a tet sharing them: then all start
     // again from the input.
     if (round > 0 && !std::isfinite((*energy)(nullptr))) {
       m.nodes = original;
-      energy.emplace(m, free_index, free_nodes, o.power);
+      energy.emplace(m, free_index, free_nodes, o.power, o.gradient_weight);
     }
     double e = 0;
     bool passes = false;
