@@ -57,9 +57,9 @@ std::vector<char> pinned_nodes(const mesh::TetMesh& m) {
 // parallel, summed in tet order.
 class Energy {
  public:
-  Energy(mesh::TetMesh& m, const std::vector<int>& free_index, int num_free, int power, double gradient_weight)
+  Energy(mesh::TetMesh& m, const std::vector<int>& free_index, int num_free, int power, double gradient_share)
       : m_(m), free_(free_index), num_free_(num_free),
-        gradient_floor_(std::pow(gradient_weight, 1.0 / power)),
+        gradient_share_(gradient_share),
         frames_(highorder::amips_frames(m.order)),
         points_(frames_.num_lattice_points()), np_(m.tet_nodes()), term_(m.num_tets()),
         worst_(m.num_tets(), 0), has_gradient_(m.num_tets(), 0), grad_(static_cast<std::size_t>(m.num_tets()) * np_) {
@@ -129,14 +129,13 @@ class Energy {
   // with `grad`, also its gradient.
   double operator()(Eigen::VectorXd* grad) {
     infinite_ = false;
-    // Tets whose worst point weighed less than gradient_weight of the worst
-    // one's at the last evaluation (1e-3 at p = 8: below 0.42 x the worst)
-    // add nothing to the gradient that L-BFGS could see, yet most moved
-    // tets are such: they get no gradient; their terms still count in E
-    // (and +inf keeps every iterate positive).
-    const double floor = grad ? gradient_floor_ * worst() : kInf;
+    // The tets whose terms made together less than gradient_share of E at
+    // the last evaluation get no gradient (their share of it is as small,
+    // and they are most of the moved tets); their terms still count in E,
+    // and +inf keeps every iterate positive.
+    const double floor = grad ? gradient_floor() : kInf;
     for_tets([&](int t, std::vector<Mat3>& k, std::vector<Mat3>& dk, std::vector<Vec3>& g) {
-      const bool with_gradient = grad && worst_[t] >= floor;
+      const bool with_gradient = grad && term_[t] >= floor;
       double w = 0;
       const double e = terms_(k.data(), points_, with_gradient ? dk.data() : nullptr, w);
       term_[t] = e;
@@ -161,6 +160,26 @@ class Energy {
   }
 
  private:
+  // The least term a tet needs for a gradient: the tets below it made less
+  // than gradient_share_ of E at the last evaluation (0 before the first).
+  double gradient_floor() const {
+    std::vector<double> terms;
+    terms.reserve(tets_.size());
+    double e = 0;
+    for (int t : tets_) {
+      terms.push_back(term_[t]);
+      e += term_[t];
+    }
+    if (!std::isfinite(e) || gradient_share_ <= 0) return 0;
+    std::sort(terms.begin(), terms.end());
+    double skipped = 0;
+    for (double term : terms) {
+      skipped += term;
+      if (skipped >= gradient_share_ * e) return term;
+    }
+    return 0;
+  }
+
   static double amips(const Mat3& k) {
     const double det = k.determinant();
     return det > 0 ? k.squaredNorm() / std::cbrt(det * det) : kInf;
@@ -189,7 +208,7 @@ class Energy {
   mesh::TetMesh& m_;
   const std::vector<int>& free_;
   int num_free_;
-  double gradient_floor_; // x worst(): tets below it get no gradient (see operator())
+  double gradient_share_; // see operator()
   const highorder::AmipsFrames& frames_;
   int points_, np_;
   DescentTerms terms_;
@@ -383,13 +402,13 @@ CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& 
     }
     if (round == 0) s.free_nodes = free_nodes;
     if (free_nodes == 0) break;
-    std::optional<Energy> energy(std::in_place, m, free_index, free_nodes, o.power, o.gradient_weight);
+    std::optional<Energy> energy(std::in_place, m, free_index, free_nodes, o.power, o.gradient_share);
     if (round == 0) s.energy_before = (*energy)(nullptr) / energy->points();
     // Held nodes put back can invert a tet sharing them: then all start
     // again from the input.
     if (round > 0 && !std::isfinite((*energy)(nullptr))) {
       m.nodes = original;
-      energy.emplace(m, free_index, free_nodes, o.power, o.gradient_weight);
+      energy.emplace(m, free_index, free_nodes, o.power, o.gradient_share);
     }
     double e = 0;
     bool passes = false;

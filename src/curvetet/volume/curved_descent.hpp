@@ -21,10 +21,9 @@
 // free node. A point with det J <= 0 makes E infinite, so the line searches
 // stay where every point is positive; a large p makes E follow the worst
 // tets. The terms of a tet's points are taken a block of points at a time
-// (descent_terms.hpp); a tet whose worst point weighed less than
-// gradient_weight x the worst point's at the last evaluation adds its terms
-// to E but nothing to the gradient (the skipped share is below what L-BFGS
-// can see, and it is most of the moved tets).
+// (descent_terms.hpp); the tets whose terms made together less than
+// gradient_share of E at the last evaluation add their terms to E but
+// nothing to the gradient (they are most of the moved tets).
 // Method: L-BFGS with a backtracking (Armijo) line search, its initial
 // inverse Hessian the diagonal of the least h^2 over a node's tets, h a
 // tet's size (E is scale-free: its curvature in a node goes as 1 / h^2,
@@ -68,7 +67,7 @@ struct CurvedDescentOptions {
   double min_scaled_jacobian = 0.05; // floor (see above)
   double active_ratio = 0.5;         // moves the tets within this ratio of the worst AMIPS or scaled J...
   int rings = 1;                     // ...and these layers of tets around them
-  double gradient_weight = 1e-3;     // tets whose worst point weighs less than this x the worst one's add no gradient
+  double gradient_share = 1e-3;      // the tets whose terms make less than this share of E add no gradient
 };
 
 struct CurvedDescentStats {
