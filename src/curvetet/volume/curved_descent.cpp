@@ -92,6 +92,8 @@ class Energy {
   }
 
   int points() const { return static_cast<int>(tets_.size()) * points_; }
+  bool partial_gradients() const { return gradient_share_ > 0; }
+  void use_every_gradient() { gradient_share_ = 0; }
   // After a finite evaluation: the largest of AMIPS / A0 and sJ0 / scaled
   // Jacobian over its points (E's limit as p grows, up to the power).
   double worst() const {
@@ -269,16 +271,24 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
       d += (alpha[k] - beta) * pairs[k].first;
     }
     const double slope = g.dot(d);
-    if (!(slope < 0)) break;
     Eigen::VectorXd xn, gn;
     double en = kInf, step = 1;
-    for (int halvings = 0; halvings < 40; ++halvings, step *= 0.5) {
+    for (int halvings = 0; halvings < 40 && slope < 0; ++halvings, step *= 0.5) {
       xn = x + step * d;
       e.set(xn);
       en = e(&gn);
       if (en <= energy + 1e-4 * step * slope) break;
     }
-    if (!(en < energy)) break;
+    if (!(en < energy)) {
+      if (!e.partial_gradients()) break;
+      // The tets left out of the gradient mattered here: every tet's
+      // gradient from now on, and L-BFGS afresh.
+      e.use_every_gradient();
+      e.set(x);
+      energy = e(&g);
+      pairs.clear();
+      continue;
+    }
     const Eigen::VectorXd s = xn - x, y = gn - g;
     if (s.dot(y) > 0) {
       pairs.emplace_back(s, y);
