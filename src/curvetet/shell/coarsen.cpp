@@ -394,7 +394,6 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
     smooth_memo.emplace();
   }
   if (o.debug_invariants) debug_check(s, out.epsilon, "coarsen start");
-  int previous_start = 0; // faces at the start of the previous round
   for (int round = 0; round < o.max_rounds; ++round) {
     out.rounds = round + 1;
     std::vector<const Operation*> ops = {&collapse, &flip, &smooth};
@@ -407,13 +406,9 @@ CoarsenStats coarsen_shell(Shell& s, const CoarsenOptions& o, const MiddleFit* f
     if (probe) thickness = probe->at_vertices(s, 2 * out.epsilon);
     const int before = s.num_prisms();
     // The last round: collapses stalled (none accepted, or they removed less
-    // than min_round_gain of the faces), or the previous round, its split
-    // included, did (collapses and splits then trade the same few faces).
-    // It skips the split, which would only leave faces behind; splits help a
-    // coarsening that still moves.
-    bool last = round + 1 == o.max_rounds ||
-                (previous_start > 0 && previous_start - before < o.min_round_gain * previous_start);
-    previous_start = before;
+    // than min_round_gain of the faces). It skips the split, which would
+    // only leave faces behind; splits help a coarsening that still moves.
+    bool last = round + 1 == o.max_rounds;
     for (const Operation* op : ops) {
       if (op->kind() == OpKind::split && last) continue;
       auto& memo = op->kind() == OpKind::collapse ? collapse_memo : smooth_memo;

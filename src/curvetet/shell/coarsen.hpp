@@ -9,8 +9,7 @@
 // also refit (every vertex star's middle nodes fitted again, after smooth).
 // A round whose collapse pass accepts nothing or removes less than
 // min_round_gain of the faces is the last, and skips its split (which would
-// only leave faces behind); so is the round after one that, its split
-// included, removed less than that, and round max_rounds.
+// only leave faces behind); so is round max_rounds.
 //
 // Every operation is a transaction (operations.hpp -> star_invariants.hpp ->
 // ShellEditor::commit). The scheduler batches non-overlapping stars (no
