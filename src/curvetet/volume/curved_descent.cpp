@@ -148,6 +148,7 @@ class Energy {
       frames_.node_gradients(dk.data(), g.data(), points_);
       std::copy(g.begin(), g.end(), grad_.begin() + static_cast<std::ptrdiff_t>(t) * np_);
     });
+    evaluated_ = true;
     double e = 0;
     for (int t : tets_) e += term_[t];
     if (!grad || !std::isfinite(e)) return e;
@@ -165,6 +166,7 @@ class Energy {
   // The least term a tet needs for a gradient: the tets below it made less
   // than gradient_share_ of E at the last evaluation (0 before the first).
   double gradient_floor() const {
+    if (!evaluated_) return 0; // term_ holds the constructor's max AMIPS
     std::vector<double> terms;
     terms.reserve(tets_.size());
     double e = 0;
@@ -218,6 +220,7 @@ class Energy {
   std::atomic<bool> infinite_{false}; // a term of the evaluation under way is +inf
   std::vector<double> term_, worst_;
   std::vector<char> has_gradient_;
+  bool evaluated_ = false; // term_ holds E's terms
   std::vector<Vec3> grad_; // per tet and local node
 };
 
