@@ -99,9 +99,10 @@ void CapIndex::update(const Shell& s, std::span<const int> prisms) {
 }
 
 std::vector<std::pair<int, int>> CapIndex::intersections(const Shell& s, std::span<const int> prisms) const {
+  // Every batch size goes through the grid: its queries run in parallel,
+  // where CGAL's box sweep is serial (the thickening rounds' whole-shell
+  // checks took 2.2-3.4x longer with it; docs/performance.md).
   const CapView view{s, s.num_prisms(), s.num_vertices()};
-  // Large batches: one box-intersection sweep beats per-cap grid queries.
-  if (prisms.size() * 8 > static_cast<std::size_t>(view.F)) return cap_intersections(s, prisms, poll);
   std::vector<int> mine;
   for (int f : prisms) {
     mine.push_back(f);

@@ -1,5 +1,6 @@
 #include "curvetet/shell/surface_distance.hpp"
 
+#include "curvetet/core/wide_vectors.hpp"
 #include "curvetet/highorder/bernstein.hpp"
 #include "curvetet/highorder/simplex_lattice.hpp"
 
@@ -25,16 +26,11 @@ Vec3 closest_on_segment(const Vec3& p, const Vec3& x, const Vec3& y) {
   return x + t * d;
 }
 
-// Squared distance from p to the box (0 inside).
-double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-  const Vec3 below = (lo - p).cwiseMax(0.0), above = (p - hi).cwiseMax(0.0);
-  return below.squaredNorm() + above.squaredNorm();
-}
-
 struct Faces {
   std::vector<std::array<Vec3, 3>> corners;
-  std::vector<Vec3> lo, hi;
+  std::array<std::vector<double>, 3> lo, hi; // bounding boxes, per coordinate (a loop over faces vectorizes)
   double max_norm = 0;
+  int size() const { return static_cast<int>(corners.size()); }
 };
 
 Faces gather(const mesh::SurfaceMesh& input, std::span<const int> faces) {
@@ -43,11 +39,28 @@ Faces gather(const mesh::SurfaceMesh& input, std::span<const int> faces) {
     const auto& f = input.faces[t];
     const std::array<Vec3, 3> c{input.vertices[f[0]], input.vertices[f[1]], input.vertices[f[2]]};
     out.corners.push_back(c);
-    out.lo.push_back(c[0].cwiseMin(c[1]).cwiseMin(c[2]));
-    out.hi.push_back(c[0].cwiseMax(c[1]).cwiseMax(c[2]));
+    for (int r = 0; r < 3; ++r) {
+      out.lo[r].push_back(std::min({c[0][r], c[1][r], c[2][r]}));
+      out.hi[r].push_back(std::max({c[0][r], c[1][r], c[2][r]}));
+    }
     for (const auto& v : c) out.max_norm = std::max(out.max_norm, v.norm());
   }
   return out;
+}
+
+// Squared distance from p to every face's box (0 inside), into d2.
+CURVETET_WIDE_VECTORS void box_distances(const Faces& f, const Vec3& p, double* d2) {
+  const double* lo[3] = {f.lo[0].data(), f.lo[1].data(), f.lo[2].data()};
+  const double* hi[3] = {f.hi[0].data(), f.hi[1].data(), f.hi[2].data()};
+  const double x = p.x(), y = p.y(), z = p.z();
+  const int n = f.size();
+  // max(v, 0) without a branch (exact: v + |v| is 2v or 0), so that the loop vectorizes.
+  const auto positive = [](double v) { return 0.5 * (v + std::abs(v)); };
+  for (int t = 0; t < n; ++t) {
+    const double bx = positive(lo[0][t] - x), by = positive(lo[1][t] - y), bz = positive(lo[2][t] - z);
+    const double ax = positive(x - hi[0][t]), ay = positive(y - hi[1][t]), az = positive(z - hi[2][t]);
+    d2[t] = (bx * bx + by * by + bz * bz) + (ax * ax + ay * ay + az * az);
+  }
 }
 
 // The patch in Bernstein form and the constants of the bound.
@@ -118,10 +131,13 @@ double distance_to_face(const Vec3& x, const Faces& f, int t) {
 // Distance from x to the nearest face (into `face`), starting from face
 // `face` (lattice neighbours share faces, which prunes the others by box).
 double nearest_face(const Vec3& x, const Faces& f, int& face) {
+  thread_local std::vector<double> box_d2;
+  box_d2.resize(f.size());
+  box_distances(f, x, box_d2.data());
   double best = std::numeric_limits<double>::infinity();
   int best_face = -1;
   auto visit = [&](int t) {
-    if (box_distance2(x, f.lo[t], f.hi[t]) >= best * best) return;
+    if (box_d2[t] >= best * best) return;
     const double d = distance_to_face(x, f, t);
     if (d < best) {
       best = d;
@@ -129,7 +145,7 @@ double nearest_face(const Vec3& x, const Faces& f, int& face) {
     }
   };
   if (face >= 0) visit(face);
-  for (int t = 0; t < static_cast<int>(f.corners.size()); ++t) visit(t);
+  for (int t = 0; t < f.size(); ++t) visit(t);
   face = best_face;
   return best;
 }

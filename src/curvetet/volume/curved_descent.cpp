@@ -307,6 +307,9 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
       best_energy = energy;
     }
     history.push_back(energy);
+    if ((it + 1) % o.checkpoint_iterations == 0)
+      logger().debug("curved descent: iteration {}, E {:.4g}, least worst {:.4g} (at {})", it + 1, energy, best_worst,
+                     best_at);
     if ((it + 1) % o.checkpoint_iterations == 0 && best_at > checked_at) {
       check_best();
       e.set(x);
