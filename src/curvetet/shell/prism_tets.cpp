@@ -55,14 +55,30 @@ const std::array<SlabTet, 12>& all_slab_tets() {
   return tets;
 }
 
-std::array<SlabTet, 3> canonical_split(const std::array<int, 3>& global_ids) {
-  // s0, s1, s2: local corners sorted by global id. Diagonals go from the
-  // lower corner of the smaller id to the upper corner of the larger one:
-  // tets {L0 L1 L2 U2}, {L0 L1 U1 U2}, {L0 U0 U1 U2} (in sorted order).
-  std::array<int, 3> s{0, 1, 2};
-  std::sort(s.begin(), s.end(), [&](int i, int j) { return global_ids[i] < global_ids[j]; });
+namespace {
+
+// s0, s1, s2: local corners sorted by global id. Diagonals go from the
+// lower corner of the smaller id to the upper corner of the larger one:
+// tets {L0 L1 L2 U2}, {L0 L1 U1 U2}, {L0 U0 U1 U2} (in sorted order).
+std::array<SlabTet, 3> split_for_order(const std::array<int, 3>& s) {
   return {oriented({s[0], s[1], s[2], s[2] + 3}), oriented({s[0], s[1], s[1] + 3, s[2] + 3}),
           oriented({s[0], s[0] + 3, s[1] + 3, s[2] + 3})};
+}
+
+} // namespace
+
+std::array<SlabTet, 3> canonical_split(const std::array<int, 3>& global_ids) {
+  // One split per order of the three ids (the prism checks ask millions of times).
+  static const auto splits = [] {
+    std::array<std::array<SlabTet, 3>, 9> table{}; // indexed by 3 s0 + s1
+    std::array<int, 3> s{0, 1, 2};
+    do table[3 * s[0] + s[1]] = split_for_order(s);
+    while (std::next_permutation(s.begin(), s.end()));
+    return table;
+  }();
+  std::array<int, 3> s{0, 1, 2};
+  std::sort(s.begin(), s.end(), [&](int i, int j) { return global_ids[i] < global_ids[j]; });
+  return splits[3 * s[0] + s[1]];
 }
 
 } // namespace curvetet::shell
