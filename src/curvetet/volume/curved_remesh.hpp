@@ -55,6 +55,10 @@ struct CurvedRemeshOptions {
     // tet below the floor (a third of them on the scans) cost most of the
     // smoothing's time for no better result.
     o.raise_scaled_jacobian_below = 0.02;
+    // The joint descent after the rounds does the long smoothing; passes
+    // 6-10 of a round gained about 1 % each (docs/usable_elements.md,
+    // session 30).
+    o.passes = 5;
     return o;
   }();
   CurvedDescentOptions descent;
