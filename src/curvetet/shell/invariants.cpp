@@ -186,8 +186,7 @@ std::vector<geometry::Box3> cap_boxes(const CapView& view, const std::vector<int
 
 } // namespace
 
-std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<const int> prisms,
-                                                   const std::function<void()>& poll) {
+std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<const int> prisms) {
   const CapView view{s, s.num_prisms(), s.num_vertices()};
   std::vector<int> all(2 * view.F), mine;
   std::iota(all.begin(), all.end(), 0);
@@ -207,7 +206,7 @@ std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<con
     const int a = mine[i], b = all[j];
     if (a != b && (a < b || !queried[b])) candidates.emplace_back(std::min(a, b), std::max(a, b));
   }
-  return decide_cap_pairs(view, std::move(candidates), poll);
+  return decide_cap_pairs(view, std::move(candidates));
 }
 
 std::vector<std::pair<int, int>> cap_intersections(const Shell& s) {

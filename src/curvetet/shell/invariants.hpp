@@ -65,9 +65,7 @@ std::vector<int> invalid_section_prisms(const Shell& s);
 // edges). The bottom and top caps of one prism whose three pillars are all
 // zero coincide by construction and are not a defect.
 // Local: pairs (a, b), a < b, with at least one cap of `prisms`, sorted.
-// `poll` as in decide_cap_pairs (cap_view.hpp).
-std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<const int> prisms,
-                                                   const std::function<void()>& poll = {});
+std::vector<std::pair<int, int>> cap_intersections(const Shell& s, std::span<const int> prisms);
 std::vector<std::pair<int, int>> cap_intersections(const Shell& s);
 
 // Spatial hash of the caps (uniform grid, Teschner et al. 2003) for repeated

@@ -307,12 +307,13 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
       best_energy = energy;
     }
     history.push_back(energy);
-    if ((it + 1) % o.checkpoint_iterations == 0)
+    if ((it + 1) % o.checkpoint_iterations == 0) {
       logger().debug("curved descent: iteration {}, E {:.4g}, least worst {:.4g} (at {})", it + 1, energy, best_worst,
                      best_at);
-    if ((it + 1) % o.checkpoint_iterations == 0 && best_at > checked_at) {
-      check_best();
-      e.set(x);
+      if (best_at > checked_at) {
+        check_best();
+        e.set(x);
+      }
     }
     best_history.push_back(best_worst);
     const int n = static_cast<int>(history.size());
