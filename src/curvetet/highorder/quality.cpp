@@ -165,13 +165,33 @@ TetQuality tet_quality(int order, const Eigen::Vector3d* nodes) {
   return q;
 }
 
+namespace {
+
+// Per order: the Lagrange gradients at the points of the order-2P lattice
+// (triangle_max_mips runs on every patch the coarsening fits).
+const std::vector<Eigen::MatrixXd>& triangle_lattice_gradients(int order) {
+  if (order < 2 || order > kMaxOrder) throw std::invalid_argument("triangle_max_mips: order must be 1..8");
+  static std::vector<Eigen::MatrixXd> cache[kMaxOrder + 1];
+  static std::once_flag once[kMaxOrder + 1];
+  std::call_once(once[order], [order] {
+    for (const MultiIndex& a : lattice(2, 2 * order).indices()) {
+      const Eigen::Vector2d uv(a[1] / double(2 * order), a[2] / double(2 * order));
+      cache[order].push_back(lagrange_gradients(2, order, uv.data()));
+    }
+  });
+  return cache[order];
+}
+
+} // namespace
+
 double triangle_max_mips(int order, const Eigen::Vector3d* nodes) {
   if (order == 1) return triangle_mips(triangle_jacobian(1, nodes, Eigen::Vector2d::Zero()));
-  const SimplexLattice& l = lattice(2, 2 * order);
   double m = 0;
-  for (const MultiIndex& a : l.indices()) {
-    const Eigen::Vector2d uv(a[1] / double(2 * order), a[2] / double(2 * order));
-    m = std::max(m, triangle_mips(triangle_jacobian(order, nodes, uv)));
+  for (const Eigen::MatrixXd& g : triangle_lattice_gradients(order)) {
+    // As triangle_jacobian, from the cached gradients.
+    Eigen::Matrix<double, 3, 2> j = Eigen::Matrix<double, 3, 2>::Zero();
+    for (Eigen::Index i = 0; i < g.rows(); ++i) j += nodes[i] * g.row(i);
+    m = std::max(m, triangle_mips(j));
     if (!std::isfinite(m)) break;
   }
   return m;

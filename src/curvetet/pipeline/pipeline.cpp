@@ -213,6 +213,7 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
     // Why candidates were turned down, summed over every pass (what limits
     // the coarsening: distance, surface distance, quality, ...).
     report["coarsen"]["rejected"] = shell::rejections_json(c.passes);
+    report["coarsen"]["check_cpu_seconds"] = shell::check_seconds_json(c.passes);
     logger().info("coarsened the shell from {} to {} faces", c.faces_before, c.faces_after);
     if (featured) {
       const auto fc = shell::check_features(r.shell);

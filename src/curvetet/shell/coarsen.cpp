@@ -204,6 +204,8 @@ struct SlotResult {
   std::uint64_t signature = 0;
   bool remembered = false;      // taken from the memo
   bool local_rejections = true; // every rejection by a star-local invariant
+  InvariantSeconds invariant_seconds{};
+  double proposal_seconds = 0;
 };
 
 // `memo` (null: none) remembers and replays rejections of local operations.
@@ -264,7 +266,9 @@ PassStats run_pass(ShellEditor& e, const Operation& op, const StarContext& ctx, 
           return;
         }
       }
+      const auto proposal_start = clock_type::now();
       auto cands = op.candidates(e, batch[i].a, batch[i].b);
+      r.proposal_seconds = since(proposal_start);
       if (cands.empty()) {
         r.tried = 1;
         ++r.rejected[static_cast<int>(Rejection::topology)];
@@ -272,7 +276,7 @@ PassStats run_pass(ShellEditor& e, const Operation& op, const StarContext& ctx, 
       }
       for (auto& c : cands) {
         ++r.tried;
-        const auto why = check_candidate(invariants, ctx, c);
+        const auto why = check_candidate(invariants, ctx, c, &r.invariant_seconds);
         if (!why) {
           r.accepted = std::move(c);
           return;
@@ -286,7 +290,11 @@ PassStats run_pass(ShellEditor& e, const Operation& op, const StarContext& ctx, 
     for (std::size_t i = 0; i < batch.size(); ++i) {
       auto& r = results[i];
       st.tried += r.tried;
-      for (int k = 0; k < kRejectionCount; ++k) st.rejected[k] += r.rejected[k];
+      for (int k = 0; k < kRejectionCount; ++k) {
+        st.rejected[k] += r.rejected[k];
+        st.invariant_seconds[k] += r.invariant_seconds[k];
+      }
+      st.proposal_seconds += r.proposal_seconds;
       st.remembered += r.remembered ? 1 : 0;
       if (!r.accepted) {
         if (memo && !r.remembered && r.local_rejections) memo->remember(r.signature, {r.tried, r.rejected});
@@ -441,5 +449,18 @@ nlohmann::json rejections_json(const std::vector<PassStats>& passes) {
 }
 
 nlohmann::json rejections_json(const PassStats& pass) { return rejections_json(std::vector<PassStats>{pass}); }
+
+nlohmann::json check_seconds_json(const std::vector<PassStats>& passes) {
+  nlohmann::json out = nlohmann::json::object();
+  double proposals = 0;
+  for (const auto& p : passes) proposals += p.proposal_seconds;
+  out["proposals"] = proposals;
+  for (int k = 0; k < kRejectionCount; ++k) {
+    double t = 0;
+    for (const auto& p : passes) t += p.invariant_seconds[k];
+    if (t > 0) out[std::string(to_string(static_cast<Rejection>(k)))] = t;
+  }
+  return out;
+}
 
 } // namespace curvetet::shell

@@ -76,12 +76,20 @@ struct PassStats {
   int faces_before = 0, faces_after = 0;
   double seconds = 0;
   double check_seconds = 0; // of which in the parallel check phase (the rest is serial)
+  // CPU seconds of the check phase: building candidates, and each
+  // invariant (by its rejection reason).
+  double proposal_seconds = 0;
+  std::array<double, kRejectionCount> invariant_seconds{};
 };
 
 // Rejected candidates per reason, keyed by to_string(Rejection) (the
 // reports' form): of one pass, or summed over a whole coarsening.
 nlohmann::json rejections_json(const PassStats& pass);
 nlohmann::json rejections_json(const std::vector<PassStats>& passes);
+
+// CPU seconds summed over the passes: "proposals" (building candidates) and
+// one entry per invariant, keyed by its rejection reason.
+nlohmann::json check_seconds_json(const std::vector<PassStats>& passes);
 
 struct CoarsenStats {
   int faces_before = 0, faces_after = 0;

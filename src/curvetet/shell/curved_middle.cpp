@@ -112,7 +112,9 @@ constexpr double kFaceSampleWeights[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 
 
 void add_samples(const Shell& s, const StarCandidate& c, PatchFitProblem& p) {
   for (const auto& im : c.images) p.samples.push_back({im.local, {im.u, im.v}, s.points[im.point].position});
-  for (std::size_t k = 0; k < c.faces.size(); ++k)
+  for (std::size_t k = 0; k < c.faces.size(); ++k) {
+    if (c.tracked[k].empty()) continue;
+    const PrismProjection project(c.geoms[k]);
     for (int t : c.tracked[k]) {
       // A point of M̄ (where Π acts) paired with the same point of M (β⁻¹).
       const auto bar = straight_triangle(s, c, t);
@@ -121,10 +123,11 @@ void add_samples(const Shell& s, const StarCandidate& c, PatchFitProblem& p) {
       for (const auto& w : kFaceSampleWeights) {
         const Vec3 x = w[0] * bar[0] + w[1] * bar[1] + w[2] * bar[2];
         double depth;
-        const auto uv = project_in(c.geoms[k], x, 1e-9, &depth);
+        const auto uv = project(x, 1e-9, &depth);
         if (uv) p.samples.push_back({static_cast<int>(k), {(*uv)[0], (*uv)[1]}, Vec3(w[0] * in[0] + w[1] * in[1] + w[2] * in[2])});
       }
     }
+  }
 }
 
 } // namespace

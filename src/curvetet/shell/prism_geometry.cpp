@@ -115,26 +115,43 @@ bool section_condition(const PrismGeom& g, const Vec3& a, const Vec3& b, const V
 }
 
 std::optional<std::array<double, 2>> project_in(const PrismGeom& g, const Vec3& p, double tol, double* depth) {
+  return PrismProjection(g)(p, tol, depth);
+}
+
+PrismProjection::PrismProjection(const PrismGeom& g) : middle_(g.middle) {
+  for (Slab slab : kSlabs)
+    for (const auto& tet : canonical_split(g.ids)) {
+      if (g.zero_pillar(slab, tet.pillar)) continue;
+      const TetFrame t = frame(g, slab, tet);
+      Tet& out = tets_[count_++];
+      out.origin = t.p[0];
+      for (int i = 0; i < 4; ++i) out.reference[i] = t.r[i];
+      Eigen::Matrix3d A;
+      A << t.p[1] - t.p[0], t.p[2] - t.p[0], t.p[3] - t.p[0];
+      out.lu.compute(A);
+    }
+}
+
+std::optional<std::array<double, 2>> PrismProjection::operator()(const Vec3& p, double tol, double* depth) const {
   // A middle vertex is the foot of its own fiber: its image is that corner
   // exactly (feature corners land on their output vertex, not 1e-32 beside).
   for (int k = 0; k < 3; ++k)
-    if (p == g.middle[k]) {
+    if (p == middle_[k]) {
       if (depth) *depth = 0;
       return std::array<double, 2>{k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
     }
   double best = -std::numeric_limits<double>::infinity();
   Vec3 best_ref = Vec3::Zero();
-  for (Slab slab : kSlabs)
-    for (const auto& tet : canonical_split(g.ids)) {
-      if (g.zero_pillar(slab, tet.pillar)) continue;
-      const TetFrame t = frame(g, slab, tet);
-      const Eigen::Vector4d l = barycentric(t.p, p);
-      const double d = l.minCoeff();
-      if (d > best) {
-        best = d;
-        best_ref = l[0] * t.r[0] + l[1] * t.r[1] + l[2] * t.r[2] + l[3] * t.r[3];
-      }
+  for (int i = 0; i < count_; ++i) {
+    const Tet& t = tets_[i];
+    const Vec3 y = t.lu.solve(Vec3(p - t.origin));
+    const Eigen::Vector4d l(1 - y.sum(), y[0], y[1], y[2]);
+    const double d = l.minCoeff();
+    if (d > best) {
+      best = d;
+      best_ref = l[0] * t.reference[0] + l[1] * t.reference[1] + l[2] * t.reference[2] + l[3] * t.reference[3];
     }
+  }
   if (depth) *depth = best;
   if (!(best >= -tol)) return std::nullopt;
   return std::array<double, 2>{best_ref[0], best_ref[1]};

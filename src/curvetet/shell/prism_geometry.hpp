@@ -13,6 +13,8 @@
 #include "curvetet/shell/invariants.hpp"
 #include "curvetet/shell/shell.hpp"
 
+#include <Eigen/LU>
+
 #include <array>
 #include <optional>
 #include <span>
@@ -56,6 +58,25 @@ bool section_condition(const PrismGeom& g, const Vec3& a, const Vec3& b, const V
 // p is outside by more than tol. A p bitwise equal to middle[k] gets corner
 // k exactly ((0,0), (1,0), (0,1)), depth 0.
 std::optional<std::array<double, 2>> project_in(const PrismGeom& g, const Vec3& p, double tol, double* depth = nullptr);
+
+// project_in for many points of one prism: its tets' LU factors are computed
+// once (the fits and Π of a star project hundreds of points per prism). Same
+// arithmetic as project_in, so the same results bit for bit.
+class PrismProjection {
+ public:
+  explicit PrismProjection(const PrismGeom& g);
+  std::optional<std::array<double, 2>> operator()(const Vec3& p, double tol, double* depth = nullptr) const;
+
+ private:
+  struct Tet {
+    Vec3 origin;                             // corner 0 in space
+    std::array<Vec3, 4> reference;           // corners in the prism's (u, v, w)
+    Eigen::PartialPivLU<Eigen::Matrix3d> lu; // of the edge vectors from corner 0
+  };
+  std::array<Vec3, 3> middle_;
+  std::array<Tet, 6> tets_;
+  int count_ = 0;
+};
 
 // Π⁻¹ restricted to the prism: where the fiber of (u, v) meets triangle
 // (a, b, c), if it does (within a 1e-9 barycentric slack). `depth` receives

@@ -76,8 +76,13 @@ class StarInvariant {
 using InvariantList = std::vector<std::unique_ptr<StarInvariant>>;
 InvariantList default_star_invariants();
 
+// CPU seconds spent in each invariant, indexed by its reason (profiling).
+using InvariantSeconds = std::array<double, kRejectionCount>;
+
 // Runs the list in order; the first failure's reason, or nullopt (accepted).
-std::optional<Rejection> check_candidate(const InvariantList& list, const StarContext& ctx, StarCandidate& c);
+// With `seconds`, adds the time each invariant took to its reason's entry.
+std::optional<Rejection> check_candidate(const InvariantList& list, const StarContext& ctx, StarCandidate& c,
+                                         InvariantSeconds* seconds = nullptr);
 
 // Commit-time check: c's new caps against the caps created by earlier
 // commits of the same batch (stamp `batch`), which the parallel check could

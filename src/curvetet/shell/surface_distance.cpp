@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <stdexcept>
 
 namespace curvetet::shell {
 
@@ -115,11 +117,31 @@ BernsteinPatch to_bernstein(int k, std::span<const Vec3> nodes) {
   return p;
 }
 
-Vec3 evaluate(const BernsteinPatch& p, double u, double v) {
-  const double lambda[3] = {1 - u - v, u, v};
-  const auto basis = highorder::bernstein_basis(2, p.degree, lambda);
+// Bernstein basis values of degree k at the points (i/n, j/n) of the
+// lattice of order n, in lattice_bound's order (j outer, i inner), each
+// point's values together; computed once per (k, n).
+constexpr int kMaxDegree = 7;
+const std::vector<double>& lattice_basis(int k, int n) {
+  if (k < 1 || k > kMaxDegree || n < 1 || n > kMaxLattice)
+    throw std::invalid_argument("surface distance: lattice basis out of range");
+  static std::vector<double> cache[kMaxDegree + 1][kMaxLattice + 1];
+  static std::once_flag once[kMaxDegree + 1][kMaxLattice + 1];
+  std::call_once(once[k][n], [k, n] {
+    auto& out = cache[k][n];
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i + j <= n; ++i) {
+        const double u = double(i) / n, v = double(j) / n;
+        const double lambda[3] = {1 - u - v, u, v};
+        const auto basis = highorder::bernstein_basis(2, k, lambda);
+        out.insert(out.end(), basis.begin(), basis.end());
+      }
+  });
+  return cache[k][n];
+}
+
+Vec3 combine(const BernsteinPatch& p, const double* basis) {
   Vec3 x = Vec3::Zero();
-  for (std::size_t a = 0; a < basis.size(); ++a) x += basis[a] * p.control[a];
+  for (std::size_t a = 0; a < p.control.size(); ++a) x += basis[a] * p.control[a];
   return x;
 }
 
@@ -194,9 +216,10 @@ PatchDistance lattice_bound(const BernsteinPatch& p, const Faces& f, int n, doub
   Samples s;
   s.n = n;
   int hint = -1;
+  const double* basis = lattice_basis(p.degree, n).data();
   for (int j = 0; j <= n; ++j)
-    for (int i = 0; i + j <= n; ++i) {
-      s.x.push_back(evaluate(p, double(i) / n, double(j) / n));
+    for (int i = 0; i + j <= n; ++i, basis += p.control.size()) {
+      s.x.push_back(combine(p, basis));
       s.d.push_back(nearest_face(s.x.back(), f, hint));
       s.face.push_back(hint);
       out.sampled = std::max(out.sampled, s.d.back());

@@ -18,6 +18,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -235,7 +236,10 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
   std::vector<char> retracted(n, 0);
   AssemblyStats stats;
   int layered_rounds = 0;
+  using clock = std::chrono::steady_clock;
+  const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
   for (int round = 0;; ++round) {
+    const auto fill_start = clock::now();
     const auto surface = retracted_surface(middle, retracted);
     // The Delaunay fill, with interior grid points, else without (a grid
     // point may fall in the circumsphere of a large surface triangle); where
@@ -262,10 +266,16 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
         return false;
       }
     }
+    const double fill_seconds = seconds_since(fill_start);
+    const auto assemble_start = clock::now();
     out = assemble_retracted(middle, retracted, *filled, order, &stats);
+    const double assemble_seconds = seconds_since(assemble_start);
+    const auto certify_start = clock::now();
     int added = 0;
     const int bad = retract_uncertified(out, n, retracted, &added);
-    logger().debug("assembly on the middle surface, round {}: {} tets not certified", round, bad);
+    logger().debug("assembly on the middle surface, round {}: {} tets not certified (fill {:.2f} s, nodes {:.2f} s, "
+                   "certificate {:.2f} s)",
+                   round, bad, fill_seconds, assemble_seconds, seconds_since(certify_start));
     if (bad == 0 || added == 0) {
       const auto count = std::count_if(retracted.begin(), retracted.end(), [](char c) { return c != 0; });
       report = {{"on", "middle"},   {"rounds", round + 1},          {"retracted_vertices", count},
