@@ -18,6 +18,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <map>
 #include <optional>
@@ -67,11 +68,23 @@ void spread_displacement(mesh::TetMesh& m, const std::vector<mesh::Vec3>& straig
     }
   Eigen::SparseMatrix<double> laplacian(nf, nf);
   laplacian.setFromTriplets(entries.begin(), entries.end());
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>>
-      cg(laplacian);
-  cg.setTolerance(1e-12);
-  Eigen::MatrixXd d = cg.solve(rhs);
-  if (cg.info() != Eigen::Success) d = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>(laplacian).solve(rhs);
+  // One preconditioner, the three coordinates solved at once: Eigen's
+  // solver object runs columns in turn and is not safe to share, so each
+  // column calls the CG kernel it uses (same arithmetic, same result).
+  const Eigen::IncompleteCholesky<double> preconditioner(laplacian);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(nf, 3);
+  std::array<bool, 3> converged{};
+  tbb::parallel_for(0, 3, [&](int k) {
+    Eigen::Index iterations = 2 * static_cast<Eigen::Index>(nf); // Eigen's default limit
+    double error = 1e-12;                                            // in: tolerance; out: relative residual
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(nf);
+    Eigen::internal::conjugate_gradient(laplacian.transpose(), Eigen::VectorXd(rhs.col(k)), x, preconditioner,
+                                        iterations, error);
+    converged[k] = preconditioner.info() == Eigen::Success && error <= 1e-12;
+    d.col(k) = x;
+  });
+  if (!(converged[0] && converged[1] && converged[2]))
+    d = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>(laplacian).solve(rhs);
   for (int i = 0; i < nn; ++i)
     if (free_id[i] >= 0) m.nodes[i] = straight[i] + d.row(free_id[i]).transpose();
 }
