@@ -423,9 +423,14 @@ class SurfaceDistance final : public StarInvariant {
   Rejection reason() const override { return Rejection::surface_distance; }
   bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
     c.max_surface_distance = 0;
+    std::vector<PatchDistanceCheck> checks;
     for (std::size_t k = 0; k < c.faces.size(); ++k) {
       const auto nodes = ctx.fit.patch_nodes(c, static_cast<int>(k));
-      const auto d = patch_distance_bound(ctx.fit.degree(), nodes, ctx.editor.shell().input, c.tracked[k], ctx.epsilon);
+      checks.emplace_back(ctx.fit.degree(), nodes, ctx.editor.shell().input, c.tracked[k], ctx.epsilon);
+      if (checks.back().fails_early()) return false;
+    }
+    for (const auto& check : checks) {
+      const auto d = check.bound();
       if (!(d.bound() <= ctx.epsilon)) return false;
       c.max_surface_distance = std::max(c.max_surface_distance, d.bound());
     }

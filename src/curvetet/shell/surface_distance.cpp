@@ -252,10 +252,21 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return best;
 }
 
-PatchDistance patch_distance_bound(int degree, std::span<const Vec3> nodes, const mesh::SurfaceMesh& input,
-                                   std::span<const int> faces, double epsilon) {
-  const BernsteinPatch p = to_bernstein(degree, nodes);
-  const Faces f = gather(input, faces);
+struct PatchDistanceCheck::Data {
+  BernsteinPatch patch;
+  Faces faces;
+  double epsilon = 0, rounding = 0;
+  int first = 0; // order of the first lattice
+};
+
+PatchDistanceCheck::PatchDistanceCheck(int degree, std::span<const Vec3> nodes, const mesh::SurfaceMesh& input,
+                                       std::span<const int> faces, double epsilon)
+    : d_(std::make_unique<Data>()) {
+  Data& d = *d_;
+  d.patch = to_bernstein(degree, nodes);
+  d.faces = gather(input, faces);
+  d.epsilon = epsilon;
+  const BernsteinPatch& p = d.patch;
   // Rounding ρ (u = unit roundoff, N control points, R = max |b_α|, V = max
   // |input vertex|): the control points err by e_b each; the Bernstein sum
   // at a lattice point adds (N + 2k + 6) u √3 R (basis values, sum, the
@@ -264,22 +275,50 @@ PatchDistance patch_distance_bound(int degree, std::span<const Vec3> nodes, cons
   // final norm adds 8 u (R + V); G and H computed from rounded b_α err by at
   // most 2k e_b + 4 u G and 4k(k - 1) e_b + 8 u H, and 2/(3n), h²/2 ≤ 1.
   const int N = static_cast<int>(nodes.size()), k = degree;
-  const double rounding = (2 * k + 1 + 4 * k * (k - 1)) * p.control_error +
-                          4 * kUnitRoundoff * (N + 2 * k + 16) * (p.max_norm + f.max_norm) +
-                          8 * kUnitRoundoff * (p.slope + p.curvature);
-  if (f.corners.empty()) return {std::numeric_limits<double>::infinity(), 0, rounding, 0};
+  d.rounding = (2 * k + 1 + 4 * k * (k - 1)) * p.control_error +
+               4 * kUnitRoundoff * (N + 2 * k + 16) * (p.max_norm + d.faces.max_norm) +
+               8 * kUnitRoundoff * (p.slope + p.curvature);
   // First lattice: the first-order term at most epsilon/4 and the
   // interpolation term at most epsilon/8, at least 2k and at most 48
   // segments per edge.
   const double wanted = std::max({2.0 * k, std::ceil(8 * p.slope / (3 * epsilon)), std::ceil(std::sqrt(4 * p.curvature / epsilon))});
-  const int first = static_cast<int>(std::min(wanted, double(kMaxLattice)));
-  auto out = lattice_bound(p, f, first, epsilon - rounding);
-  out.rounding = rounding;
-  if (out.bound() <= epsilon || out.sampled + rounding >= epsilon || first >= kMaxLattice) return out;
+  d.first = static_cast<int>(std::min(wanted, double(kMaxLattice)));
+}
+
+PatchDistanceCheck::~PatchDistanceCheck() = default;
+PatchDistanceCheck::PatchDistanceCheck(PatchDistanceCheck&&) noexcept = default;
+
+bool PatchDistanceCheck::fails_early() const {
+  const Data& d = *d_;
+  if (d.faces.corners.empty()) return true;
+  const int n = d.first;
+  const std::size_t N = d.patch.control.size();
+  const double* basis = lattice_basis(d.patch.degree, n).data();
+  const int probes[7][2] = {{n / 3, n / 3}, {n / 2, 0}, {0, n / 2}, {n / 2, n - n / 2},
+                            {n / 6, n / 6}, {n - n / 3, n / 6}, {n / 6, n - n / 3}};
+  for (const auto& [i, j] : probes) {
+    const int index = j * (n + 1) - j * (j - 1) / 2 + i; // Samples::index
+    int hint = -1;
+    if (nearest_face(combine(d.patch, basis + index * N), d.faces, hint) > d.epsilon - d.rounding) return true;
+  }
+  return false;
+}
+
+PatchDistance PatchDistanceCheck::bound() const {
+  const Data& d = *d_;
+  if (d.faces.corners.empty()) return {std::numeric_limits<double>::infinity(), 0, d.rounding, 0};
+  auto out = lattice_bound(d.patch, d.faces, d.first, d.epsilon - d.rounding);
+  out.rounding = d.rounding;
+  if (out.bound() <= d.epsilon || out.sampled + d.rounding >= d.epsilon || d.first >= kMaxLattice) return out;
   // Missed only between samples: twice as fine, once.
-  out = lattice_bound(p, f, std::min(kMaxLattice, 2 * first), epsilon - rounding);
-  out.rounding = rounding;
+  out = lattice_bound(d.patch, d.faces, std::min(kMaxLattice, 2 * d.first), d.epsilon - d.rounding);
+  out.rounding = d.rounding;
   return out;
+}
+
+PatchDistance patch_distance_bound(int degree, std::span<const Vec3> nodes, const mesh::SurfaceMesh& input,
+                                   std::span<const int> faces, double epsilon) {
+  return PatchDistanceCheck(degree, nodes, input, faces, epsilon).bound();
 }
 
 double middle_distance_bound(const Shell& s, double epsilon) {

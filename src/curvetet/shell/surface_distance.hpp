@@ -21,6 +21,7 @@
 // bound is at least the true maximum: no tolerance.
 #include "curvetet/shell/shell.hpp"
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -44,6 +45,27 @@ struct PatchDistance {
 // bound() > epsilon (then `sampled` may be a lower estimate).
 PatchDistance patch_distance_bound(int degree, std::span<const Vec3> nodes, const mesh::SurfaceMesh& input,
                                    std::span<const int> faces, double epsilon);
+
+// patch_distance_bound in two steps, for callers that reject a candidate as
+// soon as any of its patches misses epsilon: fails_early() samples a few
+// points of the first lattice (centroid, edge midpoints, inner points) and
+// is true when one lies farther than epsilon - ρ (or no face is given).
+// Then bound() exceeds epsilon too: it samples the same points bit for bit
+// and fails at the first such. Most failing patches fail there, and
+// checking every patch's probes first spares the passing patches' lattices.
+class PatchDistanceCheck {
+ public:
+  PatchDistanceCheck(int degree, std::span<const Vec3> nodes, const mesh::SurfaceMesh& input,
+                     std::span<const int> faces, double epsilon);
+  ~PatchDistanceCheck();
+  PatchDistanceCheck(PatchDistanceCheck&&) noexcept;
+  bool fails_early() const;
+  PatchDistance bound() const;
+
+ private:
+  struct Data;
+  std::unique_ptr<Data> d_;
+};
 
 // The largest bound over the whole middle surface of s (each prism's patch
 // against the input faces it tracks), computed in parallel; infinity when a
