@@ -139,3 +139,38 @@ TEST(ImageArea, ExactTilingSeesASliverTheDoubleSumForgave) {
       EXPECT_NEAR(image_area_sum(p.g, fan, all).area, 1.0, 1e-9);
     }
 }
+
+// Π in one prism: a point on the fiber of (u, v) (pillars along the normal,
+// so the fiber is the normal line) projects to (u, v); PrismProjection,
+// which keeps the tets' factors for many points, gives project_in's result
+// bit for bit; middle corners land on their corner exactly; points outside
+// are refused.
+TEST(Projection, ReusedFactorsGiveTheSameFiberFeet) {
+  for (int rot = 0; rot < 10; ++rot) {
+    const TiltedPrism p(0.2 + 0.5 * rot, 0.05);
+    const PrismProjection project(p.g);
+    for (const double u : {0.0, 0.1, 0.25, 0.6})
+      for (const double v : {0.0, 0.15, 0.3})
+        for (const double h : {-0.04, -1e-9, 0.0, 0.02, 0.049}) {
+          if (u + v > 1) continue;
+          const Vec3 x = (1 - u - v) * p.g.middle[0] + u * p.g.middle[1] + v * p.g.middle[2] + h * p.normal;
+          double depth_a = 0, depth_b = 0;
+          const auto a = project(x, 1e-9, &depth_a);
+          const auto b = project_in(p.g, x, 1e-9, &depth_b);
+          ASSERT_TRUE(a && b);
+          EXPECT_EQ((*a)[0], (*b)[0]);
+          EXPECT_EQ((*a)[1], (*b)[1]);
+          EXPECT_EQ(depth_a, depth_b);
+          EXPECT_NEAR((*a)[0], u, 1e-12);
+          EXPECT_NEAR((*a)[1], v, 1e-12);
+        }
+    for (int k = 0; k < 3; ++k) {
+      const auto c = project(p.g.middle[k], 0);
+      ASSERT_TRUE(c);
+      EXPECT_EQ((*c)[0], k == 1 ? 1.0 : 0.0);
+      EXPECT_EQ((*c)[1], k == 2 ? 1.0 : 0.0);
+    }
+    EXPECT_FALSE(project(p.g.middle[0] + 0.2 * p.normal, 1e-9)); // above the top
+    EXPECT_FALSE(project(p.g.middle[1] * 2 - p.g.middle[0], 1e-9)); // beyond a side
+  }
+}

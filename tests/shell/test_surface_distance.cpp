@@ -102,3 +102,26 @@ TEST(SurfaceDistance, ClosestPointStaysOnANeedle) {
   const Vec3 r = closest_point_on_triangle(Vec3(0.2, 0.2, 1), a, Vec3(1, 0, 0), Vec3(0, 1, 0));
   EXPECT_NEAR((r - Vec3(0.2, 0.2, 0)).norm(), 0, 1e-15);
 }
+
+// The early probes agree with the full bound: a patch they fail has a bound
+// above epsilon, and every patch whose bound is within epsilon passes them.
+TEST(SurfaceDistance, ProbesFailOnlyPatchesTheBoundFails) {
+  const auto input = flat_input();
+  const std::vector<int> faces = {0, 1, 2, 3};
+  int failed_early = 0;
+  for (const double c : {0.0, 0.3, 1.0, 2.0, 2.9, 3.0, 3.1, -4.0, 8.0})
+    for (const double eps : {0.5, 0.14, 0.1, 0.05, 0.01}) {
+      const PatchDistanceCheck check(3, bubble_nodes(c), input, faces, eps);
+      const auto d = check.bound();
+      EXPECT_EQ(d.bound(), patch_distance_bound(3, bubble_nodes(c), input, faces, eps).bound());
+      if (check.fails_early()) {
+        ++failed_early;
+        EXPECT_GT(d.bound(), eps) << c << " " << eps;
+      }
+      if (d.bound() <= eps) {
+        EXPECT_FALSE(check.fails_early()) << c << " " << eps;
+      }
+    }
+  EXPECT_GT(failed_early, 0); // the probes do reject the high bubbles
+  EXPECT_TRUE(PatchDistanceCheck(3, bubble_nodes(0), input, {}, 1).fails_early());
+}
