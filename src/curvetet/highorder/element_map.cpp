@@ -26,9 +26,12 @@ Eigen::Vector3d triangle_point(int order, const Eigen::Vector3d* nodes, const Ei
 }
 
 Eigen::Matrix<double, 3, 2> triangle_jacobian(int order, const Eigen::Vector3d* nodes, const Eigen::Vector2d& uv) {
-  Eigen::MatrixXd g = lagrange_gradients(2, order, uv.data());
+  return triangle_jacobian(lagrange_gradients(2, order, uv.data()), nodes);
+}
+
+Eigen::Matrix<double, 3, 2> triangle_jacobian(const Eigen::MatrixXd& gradients, const Eigen::Vector3d* nodes) {
   Eigen::Matrix<double, 3, 2> j = Eigen::Matrix<double, 3, 2>::Zero();
-  for (Eigen::Index i = 0; i < g.rows(); ++i) j += nodes[i] * g.row(i);
+  for (Eigen::Index i = 0; i < gradients.rows(); ++i) j += nodes[i] * gradients.row(i);
   return j;
 }
 

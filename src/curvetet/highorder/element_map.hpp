@@ -15,5 +15,8 @@ Eigen::Matrix3d tet_jacobian(int order, const Eigen::Vector3d* nodes, const Eige
 Eigen::Vector3d triangle_point(int order, const Eigen::Vector3d* nodes, const Eigen::Vector2d& uv);
 // Columns: dx/du, dx/dv.
 Eigen::Matrix<double, 3, 2> triangle_jacobian(int order, const Eigen::Vector3d* nodes, const Eigen::Vector2d& uv);
+// The same from the Lagrange gradients at the point (N x 2), for callers
+// that keep them for many patches.
+Eigen::Matrix<double, 3, 2> triangle_jacobian(const Eigen::MatrixXd& gradients, const Eigen::Vector3d* nodes);
 
 } // namespace curvetet::highorder

@@ -170,7 +170,7 @@ namespace {
 // Per order: the Lagrange gradients at the points of the order-2P lattice
 // (triangle_max_mips runs on every patch the coarsening fits).
 const std::vector<Eigen::MatrixXd>& triangle_lattice_gradients(int order) {
-  if (order < 2 || order > kMaxOrder) throw std::invalid_argument("triangle_max_mips: order must be 1..8");
+  if (order < 2 || order > kMaxOrder) throw std::invalid_argument("triangle_max_mips: lattice gradients for order 2..8 only");
   static std::vector<Eigen::MatrixXd> cache[kMaxOrder + 1];
   static std::once_flag once[kMaxOrder + 1];
   std::call_once(once[order], [order] {
@@ -188,10 +188,7 @@ double triangle_max_mips(int order, const Eigen::Vector3d* nodes) {
   if (order == 1) return triangle_mips(triangle_jacobian(1, nodes, Eigen::Vector2d::Zero()));
   double m = 0;
   for (const Eigen::MatrixXd& g : triangle_lattice_gradients(order)) {
-    // As triangle_jacobian, from the cached gradients.
-    Eigen::Matrix<double, 3, 2> j = Eigen::Matrix<double, 3, 2>::Zero();
-    for (Eigen::Index i = 0; i < g.rows(); ++i) j += nodes[i] * g.row(i);
-    m = std::max(m, triangle_mips(j));
+    m = std::max(m, triangle_mips(triangle_jacobian(g, nodes)));
     if (!std::isfinite(m)) break;
   }
   return m;

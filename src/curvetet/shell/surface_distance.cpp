@@ -121,6 +121,8 @@ BernsteinPatch to_bernstein(int k, std::span<const Vec3> nodes) {
 // lattice of order n, in lattice_bound's order (j outer, i inner), each
 // point's values together; computed once per (k, n).
 constexpr int kMaxDegree = 7;
+int lattice_index(int n, int i, int j) { return j * (n + 1) - j * (j - 1) / 2 + i; }
+
 const std::vector<double>& lattice_basis(int k, int n) {
   if (k < 1 || k > kMaxDegree || n < 1 || n > kMaxLattice)
     throw std::invalid_argument("surface distance: lattice basis out of range");
@@ -173,12 +175,13 @@ double nearest_face(const Vec3& x, const Faces& f, int& face) {
 }
 
 // The samples of a lattice of order n: positions, distances, nearest faces.
+// Point (i, j) (i + j <= n) is number lattice_index(n, i, j), j outer.
 struct Samples {
   int n = 0;
   std::vector<Vec3> x;
   std::vector<double> d;
   std::vector<int> face;
-  int index(int i, int j) const { return j * (n + 1) - j * (j - 1) / 2 + i; } // i + j <= n
+  int index(int i, int j) const { return lattice_index(n, i, j); }
 };
 
 // Bound on the distance over one lattice cell (corners a, b, c), given
@@ -297,9 +300,9 @@ bool PatchDistanceCheck::fails_early() const {
   const int probes[7][2] = {{n / 3, n / 3}, {n / 2, 0}, {0, n / 2}, {n / 2, n - n / 2},
                             {n / 6, n / 6}, {n - n / 3, n / 6}, {n / 6, n - n / 3}};
   for (const auto& [i, j] : probes) {
-    const int index = j * (n + 1) - j * (j - 1) / 2 + i; // Samples::index
     int hint = -1;
-    if (nearest_face(combine(d.patch, basis + index * N), d.faces, hint) > d.epsilon - d.rounding) return true;
+    if (nearest_face(combine(d.patch, basis + lattice_index(n, i, j) * N), d.faces, hint) > d.epsilon - d.rounding)
+      return true;
   }
   return false;
 }

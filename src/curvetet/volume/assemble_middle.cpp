@@ -41,11 +41,11 @@ bool is_retracted(const CurvedMiddle& s, const std::vector<char>& retracted, int
 // Moves every node that is not fixed by the discrete harmonic extension of
 // the fixed nodes' displacement from `straight` (every lattice edge of every
 // tet a unit spring). Solved by conjugate gradients with an incomplete
-// Cholesky preconditioner to a relative residual of 1e-12 (the direct
-// sparse LDLT took 18 s per assembly round on bunny at ε = 0.1 %, 67k
-// nodes, against 1.2 s; docs/performance.md); the direct solve only if CG
-// does not get there. The nodes only start the certificate's checks, so
-// the rounding of either solve is harmless.
+// Cholesky preconditioner to a relative residual of 1e-12 (a direct
+// factorization is an order of magnitude slower on large fills,
+// docs/performance.md); the direct solve only if CG does not get there.
+// The nodes only start the certificate's checks, so the rounding of either
+// solve is harmless.
 void spread_displacement(mesh::TetMesh& m, const std::vector<mesh::Vec3>& straight, const std::vector<char>& fixed) {
   const int nn = static_cast<int>(m.nodes.size());
   std::vector<int> free_id(nn, -1);
@@ -74,13 +74,13 @@ void spread_displacement(mesh::TetMesh& m, const std::vector<mesh::Vec3>& straig
   const Eigen::IncompleteCholesky<double> preconditioner(laplacian);
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(nf, 3);
   std::array<bool, 3> converged{};
-  tbb::parallel_for(0, 3, [&](int k) {
+  if (preconditioner.info() == Eigen::Success) tbb::parallel_for(0, 3, [&](int k) {
     Eigen::Index iterations = 2 * static_cast<Eigen::Index>(nf); // Eigen's default limit
     double error = 1e-12;                                            // in: tolerance; out: relative residual
     Eigen::VectorXd x = Eigen::VectorXd::Zero(nf);
     Eigen::internal::conjugate_gradient(laplacian.transpose(), Eigen::VectorXd(rhs.col(k)), x, preconditioner,
                                         iterations, error);
-    converged[k] = preconditioner.info() == Eigen::Success && error <= 1e-12;
+    converged[k] = error <= 1e-12;
     d.col(k) = x;
   });
   if (!(converged[0] && converged[1] && converged[2]))
