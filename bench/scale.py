@@ -383,22 +383,23 @@ def svg_plot(records, fit_min, fit_min2, title):
             return py + ph - ph * (math.log10(y) - math.log10(ylo)) / (math.log10(yhi) - math.log10(ylo))
 
         o = [f'<rect x="{px}" y="{py}" width="{pw}" height="{ph}" fill="none" stroke="black"/>']
-        for e in range(round(math.log10(xlo)), math.floor(math.log10(xhi)) + 1):
-            x = X(10 ** e)
-            o.append(f'<line x1="{x:.1f}" y1="{py}" x2="{x:.1f}" y2="{py + ph}" stroke="#dddddd"/>')
-            o.append(f'<text x="{x:.1f}" y="{py + ph + 18}" text-anchor="middle">10<tspan dy="-6" font-size="10">{e}</tspan></text>')
-            for m in range(2, 10):
-                if 10 ** e * m < xhi:
-                    xm = X(10 ** e * m)
-                    o.append(f'<line x1="{xm:.1f}" y1="{py + ph}" x2="{xm:.1f}" y2="{py + ph - 4}" stroke="black"/>')
-        for e in range(round(math.log10(ylo)), round(math.log10(yhi)) + 1):
-            y = Y(10 ** e)
-            o.append(f'<line x1="{px}" y1="{y:.1f}" x2="{px + pw}" y2="{y:.1f}" stroke="#dddddd"/>')
-            o.append(f'<text x="{px - 6}" y="{y + 4:.1f}" text-anchor="end">10<tspan dy="-6" font-size="10">{e}</tspan></text>')
-            for m in range(2, 10):
-                if 10 ** e * m < yhi:
-                    ym = Y(10 ** e * m)
-                    o.append(f'<line x1="{px}" y1="{ym:.1f}" x2="{px + 4}" y2="{ym:.1f}" stroke="black"/>')
+        def decades(lo, hi, last, at, grid, label, tick):
+            # Per power of ten: its grid line and label, then ticks at 2..9 times it.
+            out = []
+            for e in range(round(math.log10(lo)), last + 1):
+                out += [grid(at(10 ** e)), label(at(10 ** e), e)]
+                out += [tick(at(10 ** e * m)) for m in range(2, 10) if 10 ** e * m < hi]
+            return out
+
+        power = '10<tspan dy="-6" font-size="10">{}</tspan></text>'
+        o += decades(xlo, xhi, math.floor(math.log10(xhi)), X,
+                     lambda x: f'<line x1="{x:.1f}" y1="{py}" x2="{x:.1f}" y2="{py + ph}" stroke="#dddddd"/>',
+                     lambda x, e: f'<text x="{x:.1f}" y="{py + ph + 18}" text-anchor="middle">' + power.format(e),
+                     lambda x: f'<line x1="{x:.1f}" y1="{py + ph}" x2="{x:.1f}" y2="{py + ph - 4}" stroke="black"/>')
+        o += decades(ylo, yhi, round(math.log10(yhi)), Y,
+                     lambda y: f'<line x1="{px}" y1="{y:.1f}" x2="{px + pw}" y2="{y:.1f}" stroke="#dddddd"/>',
+                     lambda y, e: f'<text x="{px - 6}" y="{y + 4:.1f}" text-anchor="end">' + power.format(e),
+                     lambda y: f'<line x1="{px}" y1="{y:.1f}" x2="{px + 4}" y2="{y:.1f}" stroke="black"/>')
         o.append(f'<text x="{px + pw / 2}" y="{py + ph + 40}" text-anchor="middle">input triangles (faces)</text>')
         o.append(f'<text x="{px - 48}" y="{py + ph / 2}" text-anchor="middle" '
                  f'transform="rotate(-90 {px - 48} {py + ph / 2})">{esc(ylabel)}</text>')
