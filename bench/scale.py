@@ -95,31 +95,30 @@ def ellipsoid_sizes(min_faces, max_faces):
 
 
 # ----------------------------------------------------------------- running
+def wall_seconds(hms):
+    s = 0.0
+    for p in hms.split(":"):
+        s = 60 * s + float(p)
+    return s
+
+
+TIME_V_FIELDS = [  # (key, pattern, conversion)
+    ("user_s", r"User time \(seconds\): ([\d.]+)", float),
+    ("sys_s", r"System time \(seconds\): ([\d.]+)", float),
+    ("peak_rss_mib", r"Maximum resident set size \(kbytes\): (\d+)", lambda k: int(k) / 1024.0),
+    ("time_wall_s", r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)", wall_seconds),
+    ("exit_status", r"Exit status: (-?\d+)", int),
+    ("signal", r"Command terminated by signal (\d+)", int),
+]
+
+
 def parse_time_v(text):
     """Fields of GNU time -v output."""
     out = {}
-    m = re.search(r"User time \(seconds\): ([\d.]+)", text)
-    if m:
-        out["user_s"] = float(m.group(1))
-    m = re.search(r"System time \(seconds\): ([\d.]+)", text)
-    if m:
-        out["sys_s"] = float(m.group(1))
-    m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", text)
-    if m:
-        out["peak_rss_mib"] = int(m.group(1)) / 1024.0
-    m = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)", text)
-    if m:
-        parts = [float(p) for p in m.group(1).split(":")]
-        s = 0.0
-        for p in parts:
-            s = 60 * s + p
-        out["time_wall_s"] = s
-    m = re.search(r"Exit status: (-?\d+)", text)
-    if m:
-        out["exit_status"] = int(m.group(1))
-    m = re.search(r"Command terminated by signal (\d+)", text)
-    if m:
-        out["signal"] = int(m.group(1))
+    for key, pattern, convert in TIME_V_FIELDS:
+        m = re.search(pattern, text)
+        if m:
+            out[key] = convert(m.group(1))
     return out
 
 
