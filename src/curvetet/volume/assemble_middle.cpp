@@ -38,6 +38,67 @@ bool is_retracted(const CurvedMiddle& s, const std::vector<char>& retracted, int
   return retracted[v] && !s.singular[v];
 }
 
+// The spread's matrix: for free nodes x != y, minus the number of tets
+// holding the lattice edge (x, y); on the diagonal, the number of lattice
+// edge ends at x. Integer counts, so any summation order gives the same
+// matrix: built row by row, without a triplet per edge end.
+Eigen::SparseMatrix<double> lattice_laplacian(const mesh::TetMesh& m, const std::vector<int>& free_id, int nf) {
+  const std::size_t np = highorder::tet_node_count(m.order);
+  const auto& edges = highorder::tet_lattice_edges(m.order);
+  const auto for_each_end = [&](auto&& f) {
+    for (std::size_t t = 0; t < static_cast<std::size_t>(m.num_tets()); ++t)
+      for (const auto& [a, b] : edges) {
+        const int x = free_id[m.tets[t * np + a]], y = free_id[m.tets[t * np + b]];
+        if (x >= 0) f(x, y);
+        if (y >= 0) f(y, x);
+      }
+  };
+  std::vector<int> start(nf + 1, 0), ends(nf, 0);
+  for_each_end([&](int x, int y) {
+    ++ends[x];
+    if (y >= 0) ++start[x + 1];
+  });
+  for (int x = 0; x < nf; ++x) start[x + 1] += start[x];
+  std::vector<int> column(start[nf]), multiplicity(start[nf]);
+  std::vector<int> next(start.begin(), start.end() - 1);
+  for_each_end([&](int x, int y) {
+    if (y >= 0) column[next[x]++] = y;
+  });
+  // Per row: its distinct free neighbours, sorted, and how often each came.
+  std::vector<int> distinct(nf);
+  tbb::parallel_for(0, nf, [&](int x) {
+    const auto first = column.begin() + start[x];
+    std::sort(first, column.begin() + start[x + 1]);
+    int k = 0;
+    for (int i = start[x]; i < start[x + 1]; ++i) {
+      if (k > 0 && column[start[x] + k - 1] == column[i]) {
+        ++multiplicity[start[x] + k - 1];
+        continue;
+      }
+      column[start[x] + k] = column[i];
+      multiplicity[start[x] + k++] = 1;
+    }
+    distinct[x] = k;
+  });
+  Eigen::SparseMatrix<double> l(nf, nf);
+  Eigen::VectorXi per_column(nf);
+  for (int x = 0; x < nf; ++x) per_column[x] = distinct[x] + 1;
+  l.reserve(per_column);
+  for (int x = 0; x < nf; ++x) { // column x, rows in increasing order (symmetric: its row x)
+    bool diagonal = false;
+    for (int i = start[x]; i < start[x] + distinct[x]; ++i) {
+      if (!diagonal && column[i] > x) {
+        l.insert(x, x) = ends[x];
+        diagonal = true;
+      }
+      l.insert(column[i], x) = -multiplicity[i];
+    }
+    if (!diagonal) l.insert(x, x) = ends[x];
+  }
+  l.makeCompressed();
+  return l;
+}
+
 // Moves every node that is not fixed by the discrete harmonic extension of
 // the fixed nodes' displacement from `straight` (every lattice edge of every
 // tet a unit spring). Solved by conjugate gradients with an incomplete
@@ -53,21 +114,16 @@ void spread_displacement(mesh::TetMesh& m, const std::vector<mesh::Vec3>& straig
   for (int i = 0; i < nn; ++i)
     if (!fixed[i]) free_id[i] = nf++;
   if (nf == 0) return;
-  std::vector<Eigen::Triplet<double>> entries;
+  // The fixed neighbours' displacements, summed in tet and edge order.
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 3);
   const std::size_t np = highorder::tet_node_count(m.order);
   for (std::size_t t = 0; t < static_cast<std::size_t>(m.num_tets()); ++t)
     for (const auto& [a, b] : highorder::tet_lattice_edges(m.order)) {
       const int ga = m.tets[t * np + a], gb = m.tets[t * np + b];
-      for (const auto& [x, y] : {std::pair{ga, gb}, std::pair{gb, ga}}) {
-        if (free_id[x] < 0) continue;
-        entries.emplace_back(free_id[x], free_id[x], 1.0);
-        if (free_id[y] >= 0) entries.emplace_back(free_id[x], free_id[y], -1.0);
-        else rhs.row(free_id[x]) += (m.nodes[y] - straight[y]).transpose();
-      }
+      for (const auto& [x, y] : {std::pair{ga, gb}, std::pair{gb, ga}})
+        if (free_id[x] >= 0 && free_id[y] < 0) rhs.row(free_id[x]) += (m.nodes[y] - straight[y]).transpose();
     }
-  Eigen::SparseMatrix<double> laplacian(nf, nf);
-  laplacian.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SparseMatrix<double> laplacian = lattice_laplacian(m, free_id, nf);
   // One preconditioner, the three coordinates solved at once: Eigen's
   // solver object runs columns in turn and is not safe to share, so each
   // column calls the CG kernel it uses (same arithmetic, same result).
