@@ -11,6 +11,7 @@
 
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <limits>
 
 using namespace curvetet;
@@ -192,4 +193,40 @@ TEST(CurvedRemesh, SplitsAnEarThatOnlyANewVertexCanFix) {
     EXPECT_EQ(s.splits, 0);
     EXPECT_GT(s.max_amips_after, 50);
   }
+}
+
+// A bipyramid over an equilateral triangle, filled by the three tets
+// around its axis: every vertex is on the boundary, and the 3-2 flip of
+// the axis gives two good tets, one fewer.
+mesh::TetMesh bipyramid_around_its_axis() {
+  mesh::TetMesh m;
+  m.order = 1;
+  const double s = std::sqrt(3.0) / 2;
+  m.nodes = {Vec3(0, 0, -0.8), Vec3(0, 0, 0.8), Vec3(1, 0, 0), Vec3(-0.5, s, 0), Vec3(-0.5, -s, 0)};
+  const int a = 0, b = 1;
+  for (const auto& [x, y] : {std::pair{2, 3}, std::pair{3, 4}, std::pair{4, 2}}) {
+    std::array<int, 4> t{a, b, x, y};
+    if (geometry::orient3d(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]) < 0) std::swap(t[0], t[1]);
+    m.tets.insert(m.tets.end(), t.begin(), t.end());
+  }
+  // Outward: the upper faces counter-clockwise seen from above, the lower ones from below.
+  m.boundary = {b, 2, 3, b, 3, 4, b, 4, 2, a, 3, 2, a, 4, 3, a, 2, 4};
+  m.tet_tags.assign(3, mesh::kDomainTag);
+  m.boundary_tags.assign(6, mesh::kBoundaryTag);
+  mesh::set_default_groups(m);
+  return m;
+}
+
+TEST(CurvedRemesh, ThreeTwoFlipsLowerTheTetCount) {
+  volume::CurvedRemeshOptions o;
+  o.smooth = o.descend = false;
+  auto m = bipyramid_around_its_axis();
+  ASSERT_TRUE(check::verify_tet_mesh(m).ok()) << check::verify_tet_mesh(m).text();
+  const auto s = volume::remesh_curved(m, o);
+  EXPECT_LT(s.max_amips_before, o.target_amips); // not a quality visit: the coarsening's flip
+  EXPECT_EQ(s.flips_3_2, 1);
+  EXPECT_EQ(m.num_tets(), 2);
+  EXPECT_LE(s.max_amips_after, o.collapse_amips);
+  const auto v = check::verify_tet_mesh(m);
+  EXPECT_TRUE(v.ok()) << v.text();
 }

@@ -233,6 +233,8 @@ class Energy {
 // nodes are left at the last that passed, so a long run is never worse
 // than a check it passed on the way. Sets `passes` when the iterate left
 // is one that passed (the caller need not check it again).
+constexpr int kTrailSpacing = 10; // iterations between the kept earlier iterates
+
 int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::function<bool()>& acceptable,
           bool& passes) {
   passes = false;
@@ -248,10 +250,38 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
   std::vector<double> best_history{best_worst}; // best_worst after each iteration
   std::optional<std::pair<Eigen::VectorXd, double>> passed; // (iterate, E) of the last check passed
   int checked_at = 0;                                       // best_at when last checked
+  // Earlier least-worst iterates since the last check passed, a few
+  // iterations apart: where a check fails (a tet inverted between the
+  // samples), the latest of them that passes is kept instead.
+  struct Snapshot {
+    int at;
+    Eigen::VectorXd x;
+    double energy;
+  };
+  std::vector<Snapshot> trail;
   const auto check_best = [&] {
     checked_at = best_at;
     e.set(best_x);
-    if (acceptable()) passed.emplace(best_x, best_energy);
+    if (acceptable()) {
+      passed.emplace(best_x, best_energy);
+      trail.clear();
+      return;
+    }
+    // Bisect the trail for the latest iterate that passes (a check per step).
+    std::size_t lo = 0, hi = trail.size();
+    std::optional<std::size_t> found;
+    while (lo < hi) {
+      const std::size_t mid = (lo + hi) / 2;
+      e.set(trail[mid].x);
+      if (acceptable()) {
+        found = mid;
+        lo = mid + 1;
+      } else {
+        hi = mid;
+      }
+    }
+    if (found) passed.emplace(trail[*found].x, trail[*found].energy);
+    trail.clear();
   };
   int it = 0;
   for (; it < o.max_iterations; ++it) {
@@ -305,6 +335,7 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
       best_worst = w;
       best_x = x;
       best_energy = energy;
+      if (trail.empty() || best_at >= trail.back().at + kTrailSpacing) trail.push_back({best_at, x, energy});
     }
     history.push_back(energy);
     if ((it + 1) % o.checkpoint_iterations == 0) {

@@ -35,7 +35,10 @@
 // less than min_worst_decrease over worst_window iterations (it falls in
 // bursts, often hundreds of iterations in: fertility's halves by 400).
 // Every checkpoint_iterations the least-worst iterate is checked as below;
-// if the last one fails, the descent ends on the last that passed.
+// where it fails (a tet inverted between the samples), the latest earlier
+// least-worst iterate that passes (kept 10 iterations apart since the last
+// check, bisected) counts as passed; if the last one fails, the descent
+// ends on the last that passed.
 // Acceptance: every tet with a moved node is certified
 // (highorder::certify_tet; undecided = not positive) and measured on every
 // sample of the convention. A tet that is not positive, exceeds the input's

@@ -356,6 +356,41 @@ class Remesher {
     return done;
   }
 
+  // Coarsening by 3-2 flips: every interior edge with three tets around it
+  // becomes a face (one tet fewer) if the two new tets stay under
+  // collapse_amips (or under the old star's max AMIPS).
+  long flip_3_2_pass() {
+    std::vector<std::pair<int, int>> edges;
+    for (int t = 0; t < e_.num_slots(); ++t) {
+      if (!e_.alive(t)) continue;
+      const edit::Corners& c = e_.corners(t);
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) edges.emplace_back(std::min(c[i], c[j]), std::max(c[i], c[j]));
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    long done = 0;
+    for (const auto& [a, b] : edges) {
+      if (!e_.has_edge(a, b) || edge_valence(a, b) != 3) continue;
+      Reject why;
+      std::vector<Proposal> ring;
+      if (!edit::remove_edge(e_, a, b, ring, &why)) continue;
+      std::vector<Candidate> candidates;
+      for (auto& r : ring) candidates.push_back({std::move(r), false});
+      done += run_best(candidates, o_.collapse_amips);
+    }
+    return done;
+  }
+
+  int edge_valence(int a, int b) const {
+    int n = 0;
+    for (int t : e_.tets_of(a)) {
+      const edit::Corners& c = e_.corners(t);
+      n += std::find(c.begin(), c.end(), b) != c.end();
+    }
+    return n;
+  }
+
  private:
   // A copy of the editor for one thread's previews, with the number of
   // committed proposals it holds (it replays the rest before use, so it
@@ -436,6 +471,7 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
       Remesher r(editor, o, s);
       if (o.collapse || o.flip) changed += r.quality_pass(o.target_amips);
       if (o.collapse) changed += r.collapse_pass();
+      if (o.flip) changed += r.flip_3_2_pass();
       // The coarsening's worst tets again (a collapse may leave one above
       // collapse_amips where the old star was worse).
       if (o.collapse || o.flip) changed += r.quality_pass(o.collapse_amips);
@@ -450,12 +486,13 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
                    round + 1, m.num_tets(), changed, std::chrono::duration<double>(t1 - t0).count(),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), now.max_amips,
                    now.min_scaled_jacobian);
-    // Another round pays only while tets above collapse_amips are left and
-    // this one lowered the max AMIPS (a round that only raised the min
-    // scaled Jacobian rarely lowers the max in the next).
+    // Another round pays while this one changed enough tets and, where tets
+    // above collapse_amips are left, lowered the max AMIPS (a round that
+    // only raised the min scaled Jacobian rarely lowers the max in the
+    // next); below collapse_amips the rounds coarsen.
     const bool gained = now.max_amips < (1 - o.smoothing.min_gain) * last.max_amips;
     last = now;
-    if (changed < o.min_operations * m.num_tets() || !gained || now.max_amips <= o.collapse_amips) break;
+    if (changed < o.min_operations * m.num_tets() || (!gained && now.max_amips > o.collapse_amips)) break;
   }
   if (o.descend) s.descent = descend_curved(m, o.descent);
   const MeshQuality after = mesh_quality(m);

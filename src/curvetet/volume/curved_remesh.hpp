@@ -16,15 +16,19 @@
 //  2. coarsening: each free vertex, those with the shortest edge first,
 //     collapses onto its best neighbour if the new tets stay under
 //     collapse_amips (or under the old star's max AMIPS, when higher);
-//  3. the quality pass again, for the tets above collapse_amips;
-//  4. smoothing (optimize_curved: steps tried on the convention's order-2P
+//  3. coarsening by 3-2 flips: each interior edge with three tets becomes a
+//     face (one tet fewer) if the two new tets stay under collapse_amips
+//     (or under the old star's max AMIPS, when higher);
+//  4. the quality pass again, for the tets above collapse_amips;
+//  5. smoothing (optimize_curved: steps tried on the convention's order-2P
 //     lattice, accepted on every sample).
 // After the rounds, every free node moves at once (descend_curved: tets
 // sharing curved nodes that no single move improves).
 // No operation takes a tet below min(min_scaled_jacobian, the old star's
-// min scaled Jacobian). Rounds stop when no tet above collapse_amips is left,
-// or one runs fewer than min_operations (x tets) operations or lowers the
-// max AMIPS by less than smoothing.min_gain. Operations run one at a time;
+// min scaled Jacobian). Rounds stop when one runs fewer than min_operations
+// (x tets) operations, or lowers the max AMIPS by less than
+// smoothing.min_gain while tets above collapse_amips are left (below it, the
+// rounds go on for coarseness alone). Operations run one at a time;
 // the previews of one choice's candidates run in parallel, each on a replica
 // of the editor that has replayed every committed operation, so the result
 // does not depend on the thread count.
