@@ -150,27 +150,33 @@ TEST(CurvedRemesh, ThreadCountDoesNotChangeTheResult) {
   EXPECT_TRUE(v.ok()) << v.text();
 }
 
+// An order-1 mesh of these tets (each turned positive) and outward boundary triangles.
+mesh::TetMesh linear_mesh(std::vector<Vec3> nodes, const std::vector<std::array<int, 4>>& tets,
+                          std::vector<int> boundary) {
+  mesh::TetMesh m;
+  m.order = 1;
+  m.nodes = std::move(nodes);
+  for (auto t : tets) {
+    if (geometry::orient3d(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]) < 0) std::swap(t[0], t[1]);
+    m.tets.insert(m.tets.end(), t.begin(), t.end());
+  }
+  m.boundary = std::move(boundary);
+  m.tet_tags.assign(tets.size(), mesh::kDomainTag);
+  m.boundary_tags.assign(m.boundary.size() / 3, mesh::kBoundaryTag);
+  mesh::set_default_groups(m);
+  return m;
+}
+
 // A roof over a pyramid: the ridge (a, b) 0.01 above the eaves (c, d), apex
 // e below. The tet (a, b, c, d) has both roof triangles as boundary faces
 // (an ear, AMIPS 54) and all its corners on the boundary: no collapse or
 // smoothing can reshape it, only a vertex on its one interior edge (c, d).
 mesh::TetMesh roof_with_an_ear() {
-  mesh::TetMesh m;
-  m.order = 1;
-  m.nodes = {Vec3(-1, 0, 0.01), Vec3(1, 0, 0.01), Vec3(0, -1, 0), Vec3(0, 1, 0), Vec3(0, 0, -1.2)};
   const int a = 0, b = 1, c = 2, d = 3, e = 4;
-  auto positive = [&](std::array<int, 4> t) {
-    if (geometry::orient3d(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]) < 0) std::swap(t[0], t[1]);
-    return t;
-  };
-  for (const auto& t : {positive({a, b, c, d}), positive({a, c, d, e}), positive({b, c, d, e})})
-    m.tets.insert(m.tets.end(), t.begin(), t.end());
   // Outward: the roof up, the sides away from the pyramid's axis.
-  m.boundary = {a, c, b, a, b, d, a, e, c, c, e, b, b, e, d, d, e, a};
-  m.tet_tags.assign(3, mesh::kDomainTag);
-  m.boundary_tags.assign(6, mesh::kBoundaryTag);
-  mesh::set_default_groups(m);
-  return m;
+  return linear_mesh({Vec3(-1, 0, 0.01), Vec3(1, 0, 0.01), Vec3(0, -1, 0), Vec3(0, 1, 0), Vec3(0, 0, -1.2)},
+                     {{a, b, c, d}, {a, c, d, e}, {b, c, d, e}},
+                     {a, c, b, a, b, d, a, e, c, c, e, b, b, e, d, d, e, a});
 }
 
 TEST(CurvedRemesh, SplitsAnEarThatOnlyANewVertexCanFix) {
@@ -199,22 +205,12 @@ TEST(CurvedRemesh, SplitsAnEarThatOnlyANewVertexCanFix) {
 // around its axis: every vertex is on the boundary, and the 3-2 flip of
 // the axis gives two good tets, one fewer.
 mesh::TetMesh bipyramid_around_its_axis() {
-  mesh::TetMesh m;
-  m.order = 1;
   const double s = std::sqrt(3.0) / 2;
-  m.nodes = {Vec3(0, 0, -0.8), Vec3(0, 0, 0.8), Vec3(1, 0, 0), Vec3(-0.5, s, 0), Vec3(-0.5, -s, 0)};
   const int a = 0, b = 1;
-  for (const auto& [x, y] : {std::pair{2, 3}, std::pair{3, 4}, std::pair{4, 2}}) {
-    std::array<int, 4> t{a, b, x, y};
-    if (geometry::orient3d(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]) < 0) std::swap(t[0], t[1]);
-    m.tets.insert(m.tets.end(), t.begin(), t.end());
-  }
   // Outward: the upper faces counter-clockwise seen from above, the lower ones from below.
-  m.boundary = {b, 2, 3, b, 3, 4, b, 4, 2, a, 3, 2, a, 4, 3, a, 2, 4};
-  m.tet_tags.assign(3, mesh::kDomainTag);
-  m.boundary_tags.assign(6, mesh::kBoundaryTag);
-  mesh::set_default_groups(m);
-  return m;
+  return linear_mesh({Vec3(0, 0, -0.8), Vec3(0, 0, 0.8), Vec3(1, 0, 0), Vec3(-0.5, s, 0), Vec3(-0.5, -s, 0)},
+                     {{a, b, 2, 3}, {a, b, 3, 4}, {a, b, 4, 2}},
+                     {b, 2, 3, b, 3, 4, b, 4, 2, a, 3, 2, a, 4, 3, a, 2, 4});
 }
 
 TEST(CurvedRemesh, ThreeTwoFlipsLowerTheTetCount) {
