@@ -222,7 +222,7 @@ TEST(CurvedRemesh, ThreeTwoFlipsLowerTheTetCount) {
   EXPECT_LT(s.max_amips_before, o.target_amips); // not a quality visit: the coarsening's flip
   EXPECT_EQ(s.flips_3_2, 1);
   EXPECT_EQ(m.num_tets(), 2);
-  EXPECT_LE(s.max_amips_after, o.collapse_amips);
+  EXPECT_LE(s.max_amips_after, o.target_amips);
   const auto v = check::verify_tet_mesh(m);
   EXPECT_TRUE(v.ok()) << v.text();
 }

@@ -17,7 +17,7 @@
 //     collapses onto its best neighbour if the new tets stay under
 //     collapse_amips (or under the old star's max AMIPS, when higher);
 //  3. coarsening by 3-2 flips: each interior edge with three tets becomes a
-//     face (one tet fewer) if the two new tets stay under collapse_amips
+//     face (one tet fewer) if the two new tets stay under target_amips
 //     (or under the old star's max AMIPS, when higher);
 //  4. the quality pass again, for the tets above collapse_amips;
 //  5. smoothing (optimize_curved: steps tried on the convention's order-2P
