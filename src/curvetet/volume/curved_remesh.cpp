@@ -359,9 +359,9 @@ class Remesher {
   // Coarsening by 3-2 flips: every interior edge with three tets around it
   // becomes a face (one tet fewer) if the two new tets stay under
   // target_amips, tets the quality pass leaves alone (or under the old
-  // star's max AMIPS). Flips up to collapse_amips left tets that the later
-  // smoothing could not bring back under it (abc_00000050: 38.9 against
-  // 26.7 without the flips, 25.0 with this cap; docs/usable_elements.md).
+  // star's max AMIPS): flips up to collapse_amips left tets that the later
+  // smoothing could not bring back under it (docs/usable_elements.md,
+  // session 32).
   long flip_3_2_pass() {
     std::vector<std::pair<int, int>> edges;
     for (int t = 0; t < e_.num_slots(); ++t) {
