@@ -250,7 +250,6 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
   std::vector<double> best_history{best_worst}; // best_worst after each iteration
   std::optional<std::pair<Eigen::VectorXd, double>> passed; // (iterate, E) of the last check passed
   int checked_at = 0;                                       // best_at when last checked
-  int above_input = 0; // iterations in a row whose worst exceeds the input's
   // Earlier least-worst iterates since the last check passed, a few
   // iterations apart: where a check fails (a tet inverted between the
   // samples), the latest of them that passes is kept instead.
@@ -331,11 +330,7 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
     x = std::move(xn);
     g = std::move(gn);
     energy = en;
-    const double w = e.worst();
-    // The input's worst is 1: above it the descent trades the worst tet for
-    // the others, and the result is the least-worst iterate anyway.
-    above_input = w > 1 ? above_input + 1 : 0;
-    if (w <= best_worst) { // E falls: the later of equals
+    if (const double w = e.worst(); w <= best_worst) { // E falls: the later of equals
       if (w < best_worst) best_at = it + 1;
       best_worst = w;
       best_x = x;
@@ -356,7 +351,7 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
     const bool e_stalled = n > o.window && history[n - 1 - o.window] - energy < o.min_decrease * history[n - 1 - o.window];
     const bool worst_stalled = n > o.worst_window && best_history[n - 1 - o.worst_window] - best_worst <
                                                          o.min_worst_decrease * best_history[n - 1 - o.worst_window];
-    if (e_stalled || worst_stalled || above_input >= o.above_input_window) {
+    if (e_stalled || worst_stalled) {
       ++it;
       break;
     }

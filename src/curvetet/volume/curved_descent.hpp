@@ -33,10 +33,7 @@
 // few steps). Stops after max_iterations, when E falls by less than
 // min_decrease over `window` iterations, or when the least worst falls by
 // less than min_worst_decrease over worst_window iterations (it falls in
-// bursts, often hundreds of iterations in: fertility's halves by 400), or
-// when the worst has stayed above the input's for above_input_window
-// iterations in a row (it then trades the worst tet for the others: on
-// bunny at 0.1 %, from iteration 6 on).
+// bursts, often hundreds of iterations in: fertility's halves by 400).
 // Every checkpoint_iterations the least-worst iterate is checked as below;
 // where it fails (a tet inverted between the samples), the latest earlier
 // least-worst iterate that passes (kept 10 iterations apart since the last
@@ -70,7 +67,6 @@ struct CurvedDescentOptions {
   double min_decrease = 0.01;        // ...E must fall by this fraction to go on
   int worst_window = 150;            // stops when over this many iterations...
   double min_worst_decrease = 0.01;  // ...the least worst has fallen by less than this fraction
-  int above_input_window = 50;       // stops when the worst has exceeded the input's this many iterations in a row
   double min_scaled_jacobian = 0.05; // floor (see above)
   double active_ratio = 0.5;         // moves the tets within this ratio of the worst AMIPS or scaled J...
   int rings = 1;                     // ...and these layers of tets around them
