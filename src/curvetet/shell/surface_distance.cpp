@@ -202,11 +202,18 @@ double cell_bound(const BernsteinPatch& p, const Faces& f, const Samples& s, std
   if (bound <= worst) return bound;
   const double interpolation = 0.5 * p.curvature * h * h;
   if (dmax + interpolation >= bound) return bound;
+  // The caller keeps max(worst, bound): a face that cannot lower the bound
+  // is left as soon as that shows, and the cell as soon as it is below worst.
   for (int a = 0; a < 3; ++a) {
     const int t = s.face[corner[a]];
+    if ((a > 0 && t == s.face[corner[0]]) || (a > 1 && t == s.face[corner[1]])) continue; // same figure
     double dt = 0;
-    for (int i : corner) dt = std::max(dt, s.face[i] == t ? s.d[i] : distance_to_face(s.x[i], f, t));
+    for (int i : corner) {
+      dt = std::max(dt, s.face[i] == t ? s.d[i] : distance_to_face(s.x[i], f, t));
+      if (dt + interpolation >= bound) break;
+    }
     bound = std::min(bound, dt + interpolation);
+    if (bound <= worst) return bound;
   }
   return bound;
 }
