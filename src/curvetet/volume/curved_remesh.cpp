@@ -459,11 +459,13 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
   s.max_amips_before = before.max_amips;
   s.mean_amips_before = before.mean_amips;
   s.min_scaled_jacobian_before = before.min_scaled_jacobian;
+  // Smooths m and returns its quality (the smoothing measures it anyway).
   const auto smooth = [&] {
-    if (!o.smooth) return;
+    if (!o.smooth) return mesh_quality(m);
     const auto st = optimize_curved(m, o.smoothing);
     s.vertex_moves += st.vertex_moves;
     s.node_moves += st.node_moves;
+    return MeshQuality{st.max_amips_after, st.mean_amips_after, st.min_scaled_jacobian_after};
   };
   MeshQuality last = before;
   for (int round = 0; round < o.rounds; ++round) {
@@ -481,9 +483,8 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
       m = editor.to_mesh();
     }
     const auto t1 = std::chrono::steady_clock::now();
-    smooth();
+    const MeshQuality now = smooth();
     ++s.rounds;
-    const MeshQuality now = mesh_quality(m);
     logger().debug("curved remesh round {}: {} tets, {} operations ({:.2f} s), smoothing {:.2f} s, max AMIPS {:.4g}, "
                    "min scaled Jacobian {:.3g}",
                    round + 1, m.num_tets(), changed, std::chrono::duration<double>(t1 - t0).count(),
