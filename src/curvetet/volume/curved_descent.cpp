@@ -349,8 +349,11 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
     best_history.push_back(best_worst);
     const int n = static_cast<int>(history.size());
     const bool e_stalled = n > o.window && history[n - 1 - o.window] - energy < o.min_decrease * history[n - 1 - o.window];
-    const bool worst_stalled = n > o.worst_window && best_history[n - 1 - o.worst_window] - best_worst <
-                                                         o.min_worst_decrease * best_history[n - 1 - o.worst_window];
+    const auto stalled_over = [&](int w) {
+      return best_history[n - 1 - w] - best_worst < o.min_worst_decrease * best_history[n - 1 - w];
+    };
+    const bool worst_stalled = (n > o.worst_window && stalled_over(o.worst_window)) ||
+                               (n == o.first_window + 1 && stalled_over(o.first_window));
     if (e_stalled || worst_stalled) {
       ++it;
       break;

@@ -33,7 +33,10 @@
 // few steps). Stops after max_iterations, when E falls by less than
 // min_decrease over `window` iterations, or when the least worst falls by
 // less than min_worst_decrease over worst_window iterations (it falls in
-// bursts, often hundreds of iterations in: fertility's halves by 400).
+// bursts, often hundreds of iterations in: fertility's halves by 400), or
+// over its first first_window iterations (where the least worst falls
+// late, it has fallen by 5 % or more by then; where it has not fallen by
+// 1 %, it barely moves after: docs/performance.md).
 // Every checkpoint_iterations the least-worst iterate is checked as below;
 // where it fails (a tet inverted between the samples), the latest earlier
 // least-worst iterate that passes (kept 10 iterations apart since the last
@@ -67,6 +70,7 @@ struct CurvedDescentOptions {
   double min_decrease = 0.01;        // ...E must fall by this fraction to go on
   int worst_window = 150;            // stops when over this many iterations...
   double min_worst_decrease = 0.01;  // ...the least worst has fallen by less than this fraction
+  int first_window = 100;            // ...or over this many from the start
   double min_scaled_jacobian = 0.05; // floor (see above)
   double active_ratio = 0.5;         // moves the tets within this ratio of the worst AMIPS or scaled J...
   int rings = 1;                     // ...and these layers of tets around them
