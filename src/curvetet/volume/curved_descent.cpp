@@ -248,22 +248,23 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
   std::deque<std::pair<Eigen::VectorXd, Eigen::VectorXd>> pairs; // (s, y)
   std::vector<double> history{energy};
   std::vector<double> best_history{best_worst}; // best_worst after each iteration
-  std::optional<std::pair<Eigen::VectorXd, double>> passed; // (iterate, E) of the last check passed
-  int checked_at = 0;                                       // best_at when last checked
-  // Earlier least-worst iterates since the last check passed, a few
-  // iterations apart: where a check fails (a tet inverted between the
-  // samples), the latest of them that passes is kept instead.
+  // A least-worst iterate: where it was reached, the nodes, E and its worst.
   struct Snapshot {
     int at;
     Eigen::VectorXd x;
-    double energy;
+    double energy, worst;
   };
+  std::optional<Snapshot> passed; // of the last check passed
+  int checked_at = 0;             // best_at when last checked
+  // Earlier least-worst iterates since the last check passed, a few
+  // iterations apart: where a check fails (a tet inverted between the
+  // samples), the latest of them that passes is kept instead.
   std::vector<Snapshot> trail;
   const auto check_best = [&] {
     checked_at = best_at;
     e.set(best_x);
     if (acceptable()) {
-      passed.emplace(best_x, best_energy);
+      passed = Snapshot{best_at, best_x, best_energy, best_worst};
       trail.clear();
       return;
     }
@@ -280,8 +281,17 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
         hi = mid;
       }
     }
-    if (found) passed.emplace(trail[*found].x, trail[*found].energy);
+    if (found) passed = std::move(trail[*found]);
     trail.clear();
+    if (!passed) return; // nothing passed yet: the caller holds the failing tets
+    // The iterate that passed is the least worst from here on, so that later
+    // iterates better than it (not only than the one that failed) count, and
+    // the stop rules see no gain since it.
+    best_x = passed->x;
+    best_energy = passed->energy;
+    best_worst = passed->worst;
+    best_at = checked_at = passed->at;
+    for (std::size_t i = passed->at + 1; i < best_history.size(); ++i) best_history[i] = best_worst;
   };
   int it = 0;
   for (; it < o.max_iterations; ++it) {
@@ -335,7 +345,7 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
       best_worst = w;
       best_x = x;
       best_energy = energy;
-      if (trail.empty() || best_at >= trail.back().at + kTrailSpacing) trail.push_back({best_at, x, energy});
+      if (trail.empty() || best_at >= trail.back().at + kTrailSpacing) trail.push_back({best_at, x, energy, w});
     }
     history.push_back(energy);
     if ((it + 1) % o.checkpoint_iterations == 0) {
@@ -362,9 +372,9 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
   if (passed && best_at > checked_at) check_best();
   if (passed) {
     passes = true;
-    if (passed->first != best_x) {
-      best_x = passed->first;
-      best_energy = passed->second;
+    if (passed->x != best_x) {
+      best_x = passed->x;
+      best_energy = passed->energy;
     }
   }
   e.set(best_x);
