@@ -40,8 +40,9 @@
 // Every checkpoint_iterations the least-worst iterate is checked as below;
 // where it fails (a tet inverted between the samples), the latest earlier
 // least-worst iterate that passes (kept 10 iterations apart since the last
-// check, bisected) counts as passed; if the last one fails, the descent
-// ends on the last that passed.
+// check, bisected) counts as passed and is the least worst from then on
+// (later iterates count when better than it); if the last check fails, the
+// descent ends on the last iterate that passed.
 // Acceptance: every tet with a moved node is certified
 // (highorder::certify_tet; undecided = not positive) and measured on every
 // sample of the convention. A tet that is not positive, exceeds the input's
