@@ -372,6 +372,8 @@ int lbfgs(Energy& e, const CurvedDescentOptions& o, double& energy, const std::f
   if (passed && best_at > checked_at) check_best();
   if (passed) {
     passes = true;
+    // A later iterate of equal worst replaces best_x without a new best_at,
+    // so it was never checked: back to the one that passed.
     if (passed->x != best_x) {
       best_x = passed->x;
       best_energy = passed->energy;
