@@ -544,10 +544,12 @@ MeshQuality mesh_quality(const mesh::TetMesh& m) {
 
 CurvedOptimizeStats optimize_curved(mesh::TetMesh& m, const CurvedOptimizeOptions& o) {
   CurvedOptimizeStats stats;
-  const MeshQuality before = mesh_quality(m);
-  stats.max_amips_before = before.max_amips;
-  stats.mean_amips_before = before.mean_amips;
-  stats.min_scaled_jacobian_before = before.min_scaled_jacobian;
+  if (o.measure_before) {
+    const MeshQuality before = mesh_quality(m);
+    stats.max_amips_before = before.max_amips;
+    stats.mean_amips_before = before.mean_amips;
+    stats.min_scaled_jacobian_before = before.min_scaled_jacobian;
+  }
   if (m.num_tets() > 0) {
     CurvedOptimizer opt(m, o);
     const auto max_amips = [&] { return *std::max_element(opt.amips().begin(), opt.amips().end()); };

@@ -49,6 +49,7 @@ struct CurvedOptimizeOptions {
   std::size_t frame_cache_bytes = std::size_t(1) << 30; // memory for cached per-tet frames (speed only)
   bool move_vertices = true;
   bool move_nodes = true;
+  bool measure_before = true;   // fill the stats' *_before figures (a whole-mesh quality pass)
 };
 
 struct CurvedOptimizeStats {

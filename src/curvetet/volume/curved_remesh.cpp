@@ -462,7 +462,9 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
   // Smooths m and returns its quality (the smoothing measures it anyway).
   const auto smooth = [&] {
     if (!o.smooth) return mesh_quality(m);
-    const auto st = optimize_curved(m, o.smoothing);
+    CurvedOptimizeOptions smoothing = o.smoothing;
+    smoothing.measure_before = false;
+    const auto st = optimize_curved(m, smoothing);
     s.vertex_moves += st.vertex_moves;
     s.node_moves += st.node_moves;
     return MeshQuality{st.max_amips_after, st.mean_amips_after, st.min_scaled_jacobian_after};
