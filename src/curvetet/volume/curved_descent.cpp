@@ -391,7 +391,8 @@ nlohmann::json CurvedDescentStats::json() const {
           {"energy_before", energy_before}, {"energy_after", energy_after}, {"seconds", seconds}};
 }
 
-CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& o) {
+CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& o,
+                                  std::vector<highorder::TetQuality>* quality_io) {
   const auto start = std::chrono::steady_clock::now();
   CurvedDescentStats s;
   const int nt = m.num_tets(), np = m.tet_nodes();
@@ -402,8 +403,13 @@ CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& 
     return std::pair{highorder::tet_quality(m.order, x.data()), std::move(x)};
   };
   // The input's worst: the acceptance's bounds.
-  std::vector<highorder::TetQuality> before(nt);
-  tbb::parallel_for(0, nt, [&](int t) { before[t] = quality(t).first; });
+  std::vector<highorder::TetQuality> before;
+  if (quality_io && static_cast<int>(quality_io->size()) == nt) {
+    before = std::move(*quality_io);
+  } else {
+    before.resize(nt);
+    tbb::parallel_for(0, nt, [&](int t) { before[t] = quality(t).first; });
+  }
   double max_amips = 0, min_sj = kInf;
   for (const auto& q : before) {
     max_amips = std::max(max_amips, q.max_amips);
@@ -509,6 +515,18 @@ CurvedDescentStats descend_curved(mesh::TetMesh& m, const CurvedDescentOptions& 
     std::sort(next.begin(), next.end());
     next.erase(std::unique(next.begin(), next.end()), next.end());
     bad = failing(next);
+  }
+  if (quality_io) {
+    // Only tets with a moved node changed.
+    std::vector<int> moved;
+    for (int t = 0; t < nt; ++t)
+      for (int i = 0; i < np; ++i)
+        if (const int n = m.tets[t * np + i]; m.nodes[n] != original[n]) {
+          moved.push_back(t);
+          break;
+        }
+    tbb::parallel_for(std::size_t(0), moved.size(), [&](std::size_t k) { before[moved[k]] = quality(moved[k]).first; });
+    *quality_io = std::move(before);
   }
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   logger().debug("curved descent: {} free nodes, {} iterations, E {:.4g} -> {:.4g}, {} tets held, {} restored, {:.2f} s",

@@ -56,9 +56,12 @@
 // certified and never worse at its worst.
 // Deterministic for any thread count: per-tet terms are computed in parallel
 // and summed in tet order.
+#include "curvetet/highorder/quality.hpp"
 #include "curvetet/mesh/tet_mesh.hpp"
 
 #include <nlohmann/json.hpp>
+
+#include <vector>
 
 namespace curvetet::volume {
 
@@ -87,6 +90,9 @@ struct CurvedDescentStats {
   nlohmann::json json() const;
 };
 
-CurvedDescentStats descend_curved(mesh::TetMesh& mesh, const CurvedDescentOptions& options = {});
+// `quality` (optional): each tet's highorder::tet_quality, of the input
+// mesh on entry (then not measured again) and of the result on return.
+CurvedDescentStats descend_curved(mesh::TetMesh& mesh, const CurvedDescentOptions& options = {},
+                                  std::vector<highorder::TetQuality>* quality = nullptr);
 
 } // namespace curvetet::volume

@@ -29,9 +29,11 @@
 // certified positive (the assembly's verification); then so is the result.
 // Deterministic for any thread count: moves are tried in batches of disjoint
 // stars, built in order from the tets visited worst first (ties by index).
+#include "curvetet/highorder/quality.hpp"
 #include "curvetet/mesh/tet_mesh.hpp"
 
 #include <cstddef>
+#include <vector>
 
 namespace curvetet::volume {
 
@@ -49,7 +51,9 @@ struct CurvedOptimizeOptions {
   std::size_t frame_cache_bytes = std::size_t(1) << 30; // memory for cached per-tet frames (speed only)
   bool move_vertices = true;
   bool move_nodes = true;
-  bool measure_before = true;   // fill the stats' *_before figures (a whole-mesh quality pass)
+  // Fill the stats' *_before / *_after figures (a whole-mesh quality pass
+  // each); a caller that measures the mesh itself turns them off.
+  bool measure_before = true, measure_after = true;
 };
 
 struct CurvedOptimizeStats {
@@ -70,5 +74,9 @@ struct MeshQuality {
   double max_amips = 0, mean_amips = 0, min_scaled_jacobian = 0;
 };
 MeshQuality mesh_quality(const mesh::TetMesh& mesh);
+// The same in two steps: each tet's quality, then the whole mesh's (the
+// same figures, bit for bit), for callers that keep the former.
+std::vector<highorder::TetQuality> tet_qualities(const mesh::TetMesh& mesh);
+MeshQuality summarize(const std::vector<highorder::TetQuality>& tets);
 
 } // namespace curvetet::volume
