@@ -550,7 +550,7 @@ MeshQuality mesh_quality(const mesh::TetMesh& m) { return summarize(tet_qualitie
 
 CurvedOptimizeStats optimize_curved(mesh::TetMesh& m, const CurvedOptimizeOptions& o) {
   CurvedOptimizeStats stats;
-  if (o.measure_before) {
+  if (o.measure) {
     const MeshQuality before = mesh_quality(m);
     stats.max_amips_before = before.max_amips;
     stats.mean_amips_before = before.mean_amips;
@@ -578,7 +578,7 @@ CurvedOptimizeStats optimize_curved(mesh::TetMesh& m, const CurvedOptimizeOption
       if (amips_now > (1 - o.min_gain) * amips_before && sj_now < (1 + o.min_gain) * sj_before) break;
     }
   }
-  if (o.measure_after) {
+  if (o.measure) {
     const MeshQuality after = mesh_quality(m);
     stats.max_amips_after = after.max_amips;
     stats.mean_amips_after = after.mean_amips;

@@ -52,8 +52,8 @@ struct CurvedOptimizeOptions {
   bool move_vertices = true;
   bool move_nodes = true;
   // Fill the stats' *_before / *_after figures (a whole-mesh quality pass
-  // each); a caller that measures the mesh itself turns them off.
-  bool measure_before = true, measure_after = true;
+  // each); a caller that measures the mesh itself turns this off.
+  bool measure = true;
 };
 
 struct CurvedOptimizeStats {

@@ -466,7 +466,7 @@ CurvedRemeshStats remesh_curved(mesh::TetMesh& m, const CurvedRemeshOptions& o) 
   const auto smooth = [&] {
     if (o.smooth) {
       CurvedOptimizeOptions smoothing = o.smoothing;
-      smoothing.measure_before = smoothing.measure_after = false;
+      smoothing.measure = false;
       const auto st = optimize_curved(m, smoothing);
       s.vertex_moves += st.vertex_moves;
       s.node_moves += st.node_moves;
