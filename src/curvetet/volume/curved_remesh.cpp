@@ -55,7 +55,7 @@ std::vector<int> stage(TetEditor& e, const Proposal& p, int* new_vertex = nullpt
   if (new_vertex) *new_vertex = v;
   std::vector<int> added;
   for (const auto& [c, tag] : p.add) added.push_back(e.add(with_vertex(c, v), tag));
-  e.relax_new_nodes();
+  if (!p.straight_new_nodes) e.relax_new_nodes();
   return added;
 }
 
@@ -96,16 +96,31 @@ double place_new_vertex(TetEditor& e, int v, const std::vector<int>& tets, Vec3&
   return worst;
 }
 
-// Max AMIPS the new tets of p would have in editor e, or +inf once one
-// reaches bound. A new vertex is first placed by a pattern search on that
-// max (its place is kept in p). e is left as it was.
-double preview(TetEditor& e, Proposal& p, double bound) {
+double preview_as_is(TetEditor& e, Proposal& p, double bound) {
   int v = edit::kNewVertex;
   const std::vector<int> added = stage(e, p, &v);
   double worst = star_max(e, added, bound);
   if (p.adds_vertex) worst = place_new_vertex(e, v, added, p.new_vertex, worst, bound);
   e.rollback();
   return worst;
+}
+
+// Max AMIPS the new tets of p would have in editor e, or +inf once one
+// reaches bound. A new vertex is first placed by a pattern search on that
+// max (its place is kept in p). Where that fails, the split is tried again
+// with its new nodes straight: a split of an ear's edge leaves a new tet on
+// a nearly degenerate boundary triangle, which the relaxation's bending
+// (spread from curved neighbours) turns inside out. e is left as it was.
+double preview(TetEditor& e, Proposal& p, double bound) {
+  const Proposal as_given = p;
+  const double worst = preview_as_is(e, p, bound);
+  if (!p.adds_vertex || worst < bound) return worst;
+  Proposal straight = as_given;
+  straight.straight_new_nodes = true;
+  const double straight_worst = preview_as_is(e, straight, bound);
+  if (!(straight_worst < worst)) return worst;
+  p = std::move(straight);
+  return straight_worst;
 }
 
 // Previews already made this round. A preview depends only on the

@@ -32,6 +32,9 @@ struct Proposal {
   std::vector<std::pair<Corners, int>> add; // corners, tag; kNewVertex = the new vertex
   bool adds_vertex = false;
   Vec3 new_vertex = Vec3::Zero();
+  // New edges, faces and interiors keep their straight nodes instead of
+  // TetEditor::relax_new_nodes' (which can bend a flat new tet inside out).
+  bool straight_new_nodes = false;
 };
 constexpr int kNewVertex = -1;
 
