@@ -96,6 +96,7 @@ double place_new_vertex(TetEditor& e, int v, const std::vector<int>& tets, Vec3&
   return worst;
 }
 
+// preview() with p's own choice of new nodes.
 double preview_as_is(TetEditor& e, Proposal& p, double bound) {
   int v = edit::kNewVertex;
   const std::vector<int> added = stage(e, p, &v);
@@ -112,10 +113,11 @@ double preview_as_is(TetEditor& e, Proposal& p, double bound) {
 // a nearly degenerate boundary triangle, which the relaxation's bending
 // (spread from curved neighbours) turns inside out. e is left as it was.
 double preview(TetEditor& e, Proposal& p, double bound) {
-  const Proposal as_given = p;
+  const Vec3 start = p.new_vertex;
   const double worst = preview_as_is(e, p, bound);
   if (!p.adds_vertex || worst < bound) return worst;
-  Proposal straight = as_given;
+  Proposal straight = p;
+  straight.new_vertex = start;
   straight.straight_new_nodes = true;
   const double straight_worst = preview_as_is(e, straight, bound);
   if (!(straight_worst < worst)) return worst;
