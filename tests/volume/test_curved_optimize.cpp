@@ -2,11 +2,11 @@
 // and keeps every tet certified positive.
 #include "curvetet/check/verify_tet_mesh.hpp"
 #include "curvetet/geometry/predicates.hpp"
-#include "curvetet/highorder/conforming_nodes.hpp"
 #include "curvetet/highorder/node_ordering.hpp"
 #include "curvetet/volume/curved_optimize.hpp"
 #include "curvetet/volume/curved_remesh.hpp"
 #include "flat_inner_tet.hpp"
+#include "straight_mesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 
 using namespace curvetet;
 using mesh::Vec3;
@@ -204,74 +203,31 @@ TEST(CurvedRemesh, SplitsAnEarThatOnlyANewVertexCanFix) {
   }
 }
 
-// m at order P, its nodes on the straight tets, its boundary triangles'
-// nodes in the triangle order (corners, edges, interior).
-mesh::TetMesh elevated(const mesh::TetMesh& m, int order) {
-  std::vector<std::array<int, 4>> tets(m.num_tets());
-  for (int t = 0; t < m.num_tets(); ++t) std::copy(m.tet(t), m.tet(t) + 4, tets[t].begin());
-  const auto numbering = highorder::number_tet_nodes(static_cast<int>(m.nodes.size()), tets, order);
-  mesh::TetMesh out;
-  out.order = order;
-  out.nodes.resize(numbering.num_nodes);
-  const int np = out.tet_nodes();
-  std::map<std::vector<int>, int> node_at; // sorted (corner, weight) pairs -> node
-  for (int t = 0; t < m.num_tets(); ++t)
-    for (int i = 0; i < np; ++i) {
-      const auto w = highorder::tet_node_barycentric(order, i);
-      Vec3 x = Vec3::Zero();
-      std::vector<std::pair<int, int>> key;
-      for (int j = 0; j < 4; ++j) {
-        x += w[j] * m.nodes[tets[t][j]];
-        if (const int k = static_cast<int>(std::lround(w[j] * order)); k > 0) key.emplace_back(tets[t][j], k);
-      }
-      const int id = numbering.tet_nodes[t * np + i];
-      out.nodes[id] = x;
-      std::sort(key.begin(), key.end());
-      std::vector<int> flat;
-      for (const auto& [c, k] : key) flat.insert(flat.end(), {c, k});
-      node_at[flat] = id;
-    }
-  for (int v = 0; v < static_cast<int>(m.nodes.size()); ++v) out.nodes[v] = m.nodes[v];
-  out.tets = numbering.tet_nodes;
-  for (int b = 0; b < m.num_boundary(); ++b)
-    for (int i = 0; i < out.triangle_nodes(); ++i) {
-      const auto q = highorder::triangle_node(order, i);
-      const std::array<int, 3> w = {order - q[0] - q[1], q[0], q[1]};
-      std::vector<std::pair<int, int>> key;
-      for (int j = 0; j < 3; ++j)
-        if (w[j] > 0) key.emplace_back(m.boundary[3 * b + j], w[j]);
-      std::sort(key.begin(), key.end());
-      std::vector<int> flat;
-      for (const auto& [c, k] : key) flat.insert(flat.end(), {c, k});
-      out.boundary.push_back(node_at.at(flat));
-    }
-  out.tet_tags = m.tet_tags;
-  out.boundary_tags = m.boundary_tags;
-  mesh::set_default_groups(out);
-  return out;
-}
-
 // The roof with an ear at order 4, the ridge 0.003 high, one roof triangle
 // a cap (its corner c 0.01 from the ridge's line), the two side triangles
-// at c bent outward:
-// a vertex on the ear's interior edge (c, d) leaves a thin tet on the cap,
-// and the relaxation of its new nodes, spread from the bent sides, turns it
-// inside out (as on nefertiti's cap triangle, docs/usable_elements.md).
+// at c bent outward: a vertex on the ear's interior edge (c, d) leaves a
+// thin tet on the cap, and the relaxation of its new nodes, spread from the
+// bent sides, turns it inside out (as on nefertiti's cap triangle,
+// docs/usable_elements.md).
 mesh::TetMesh roof_with_an_ear_on_a_cap() {
   const int a = 0, b = 1, c = 2, d = 3, e = 4;
-  auto m = elevated(linear_mesh({Vec3(-1, 0, 0.003), Vec3(1, 0, 0.003), Vec3(0.3, -0.01, 0), Vec3(0, 1, 0),
-                                 Vec3(0, 0, -1.2)},
-                                {{a, b, c, d}, {a, c, d, e}, {b, c, d, e}},
-                                {a, c, b, a, b, d, a, e, c, c, e, b, b, e, d, d, e, a}),
-                    4);
-  // Side triangles (a, e, c) and (c, e, b): every node off the roof's
-  // edges pushed outward (-y), most at mid-height.
-  for (int f : {2, 3}) {
+  const auto linear = linear_mesh({Vec3(-1, 0, 0.003), Vec3(1, 0, 0.003), Vec3(0.3, -0.01, 0), Vec3(0, 1, 0),
+                                   Vec3(0, 0, -1.2)},
+                                  {{a, b, c, d}, {a, c, d, e}, {b, c, d, e}}, {});
+  std::vector<std::array<int, 4>> tets(linear.num_tets());
+  for (int t = 0; t < linear.num_tets(); ++t) std::copy(linear.tet(t), linear.tet(t) + 4, tets[t].begin());
+  auto m = test::straight_mesh(linear.nodes, tets, 4);
+  // The side triangles at c (those with corners c and e): every node off
+  // the roof's edges pushed outward (-y), most at mid-height.
+  for (int f = 0; f < m.num_boundary(); ++f) {
     const int* t = m.boundary_triangle(f);
+    const int* e_at = std::find(t, t + 3, e);
+    if (e_at == t + 3 || std::find(t, t + 3, c) == t + 3) continue;
     for (int i = 3; i < m.triangle_nodes(); ++i) {
       const auto q = highorder::triangle_node(4, i);
-      const double w0 = (4 - q[0] - q[1]) / 4.0, w1 = q[0] / 4.0, w2 = q[1] / 4.0;
-      m.nodes[t[i]].y() -= 0.4 * w1 * (w0 + w2);
+      const std::array<int, 3> w = {4 - q[0] - q[1], q[0], q[1]};
+      const double on_e = w[e_at - t] / 4.0;
+      m.nodes[t[i]].y() -= 0.4 * on_e * (1 - on_e);
     }
   }
   return m;

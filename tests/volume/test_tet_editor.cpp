@@ -9,6 +9,7 @@
 #include "curvetet/volume/edit/invariants.hpp"
 #include "curvetet/volume/edit/operations.hpp"
 #include "curvetet/volume/edit/tet_editor.hpp"
+#include "straight_mesh.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -43,36 +44,7 @@ Corners sorted_corners(Corners c) {
   return c;
 }
 
-// A mesh of straight order-P tets over `points` (vertex i = node i), nodes
-// numbered by highorder::number_tet_nodes; tets tagged kDomainTag; boundary =
-// the hull faces (faces used once), outward, tagged kBoundaryTag.
-mesh::TetMesh straight_mesh(const std::vector<Vec3>& points, const std::vector<Corners>& tets, int order) {
-  const auto numbering = highorder::number_tet_nodes(static_cast<int>(points.size()), tets, order);
-  mesh::TetMesh m;
-  m.order = order;
-  m.tets = numbering.tet_nodes;
-  m.nodes.assign(numbering.num_nodes, Vec3::Zero());
-  const int np = m.tet_nodes();
-  for (int t = 0; t < static_cast<int>(tets.size()); ++t)
-    for (int i = 0; i < np; ++i) {
-      const auto w = highorder::tet_node_barycentric(order, i);
-      Vec3 p = Vec3::Zero();
-      for (int k = 0; k < 4; ++k) p += w[k] * points[tets[t][k]];
-      m.nodes[m.tets[t * np + i]] = p;
-    }
-  std::map<Face, int> uses;
-  for (const Corners& c : tets)
-    for (const auto& f : kTetFaces) ++uses[sorted_face(c[f[0]], c[f[1]], c[f[2]])];
-  for (int t = 0; t < static_cast<int>(tets.size()); ++t)
-    for (int f = 0; f < 4; ++f) {
-      const Corners& c = tets[t];
-      if (uses[sorted_face(c[kTetFaces[f][0]], c[kTetFaces[f][1]], c[kTetFaces[f][2]])] != 1) continue;
-      for (int i : highorder::tet_face_nodes(order, f)) m.boundary.push_back(m.tets[t * np + i]);
-      m.boundary_tags.push_back(mesh::kBoundaryTag);
-    }
-  m.tet_tags.assign(tets.size(), mesh::kDomainTag);
-  return m;
-}
+using test::straight_mesh;
 
 // Unit cube, corner i at (i & 1, i >> 1 & 1, i >> 2 & 1), centre 8. The
 // sides at corner 0 are cut by the diagonals 0-3, 0-5, 0-6, the sides at
