@@ -37,13 +37,16 @@ Quality quality(const mesh::TetMesh& m) {
   return q;
 }
 
-Quality main_job(const mesh::SurfaceMesh& input, double thickness_ratio = std::numeric_limits<double>::infinity()) {
+Quality main_job(const mesh::SurfaceMesh& input, double thickness_ratio = std::numeric_limits<double>::infinity(),
+                 bool thin_part_retry = true, Report* out = nullptr) {
   pipeline::PipelineOptions o;
   o.order = 4;
   o.epsilon = 0.01;
   o.thickness_ratio = thickness_ratio;
+  o.thin_part_retry = thin_part_retry;
   Report report;
   const auto r = pipeline::run_pipeline(input, o, report);
+  if (out) *out = report;
   EXPECT_TRUE(r.verification.ok());
   EXPECT_EQ(r.verification.positive, static_cast<std::size_t>(r.mesh.num_tets()));
   return quality(r.mesh);
@@ -80,32 +83,39 @@ mesh::SurfaceMesh boundary_of(std::vector<mesh::Vec3> vertices, const std::vecto
   return m;
 }
 
-// A box of n Kuhn cubes along x, each of length `length` in x:
+// A box of nx x ny x nz Kuhn cubes of size sx x sy x sz:
 //
 //   z  y
 //   | /      each cube: the 6 tets x_{s(1)} >= x_{s(2)} >= x_{s(3)} on the
 //   |/___ x  path (0,0,0) -> ... -> (1,1,1), boundary kept as the input
-mesh::SurfaceMesh kuhn_box(int n, double length) {
+mesh::SurfaceMesh kuhn_grid(std::array<int, 3> n, const mesh::Vec3& size) {
   std::vector<mesh::Vec3> v;
-  const auto id = [](int i, int y, int z) { return 4 * i + 2 * y + z; };
-  for (int i = 0; i <= n; ++i)
-    for (int y = 0; y < 2; ++y)
-      for (int z = 0; z < 2; ++z) v.emplace_back(length * i, y, z);
+  const auto id = [&](int i, int j, int k) { return (i * (n[1] + 1) + j) * (n[2] + 1) + k; };
+  for (int i = 0; i <= n[0]; ++i)
+    for (int j = 0; j <= n[1]; ++j)
+      for (int k = 0; k <= n[2]; ++k) v.emplace_back(size.x() * i, size.y() * j, size.z() * k);
   std::vector<std::array<int, 4>> tets;
-  std::array<int, 3> axes{0, 1, 2};
-  for (int i = 0; i < n; ++i) do {
-      std::array<int, 3> at{0, 0, 0};
-      std::array<int, 4> t{id(i, 0, 0), 0, 0, 0};
-      for (int k = 0; k < 3; ++k) {
-        at[axes[k]] = 1;
-        t[k + 1] = id(i + at[0], at[1], at[2]);
+  for (int i = 0; i < n[0]; ++i)
+    for (int j = 0; j < n[1]; ++j)
+      for (int k = 0; k < n[2]; ++k) {
+        std::array<int, 3> axes{0, 1, 2};
+        do {
+          std::array<int, 3> at{0, 0, 0};
+          std::array<int, 4> t{id(i, j, k), 0, 0, 0};
+          for (int a = 0; a < 3; ++a) {
+            at[axes[a]] = 1;
+            t[a + 1] = id(i + at[0], j + at[1], k + at[2]);
+          }
+          const Eigen::Matrix3d jac =
+              (Eigen::Matrix3d() << v[t[1]] - v[t[0]], v[t[2]] - v[t[0]], v[t[3]] - v[t[0]]).finished();
+          if (jac.determinant() < 0) std::swap(t[2], t[3]);
+          tets.push_back(t);
+        } while (std::next_permutation(axes.begin(), axes.end()));
       }
-      const Eigen::Matrix3d j = (Eigen::Matrix3d() << v[t[1]] - v[t[0]], v[t[2]] - v[t[0]], v[t[3]] - v[t[0]]).finished();
-      if (j.determinant() < 0) std::swap(t[2], t[3]);
-      tets.push_back(t);
-    } while (std::next_permutation(axes.begin(), axes.end()));
   return boundary_of(v, tets);
 }
+
+mesh::SurfaceMesh kuhn_box(int n, double length) { return kuhn_grid({n, 1, 1}, mesh::Vec3(length, 1, 1)); }
 
 } // namespace
 
@@ -152,4 +162,20 @@ TEST(UsableElements, LongThinBoxCloseToTheLinearFill) {
   const auto ours = main_job(input);
   EXPECT_LE(ours.max_amips, 1.2 * fill.max_amips) << ours.tets << " tets vs " << fill.tets;
   EXPECT_LT(ours.tets, fill.tets);
+}
+
+// A plate 4 x 4 x 0.1 (1.8 epsilon thick): the default coarsening leaves
+// triangles many times longer than the plate is thick on both sides, and
+// only flat tets between them, which no volume operation improves; the
+// second run with the thickness rule keeps the triangles short and is kept.
+TEST(UsableElements, ThinPlateRunsAgainWithTheThicknessRule) {
+  const auto input = kuhn_grid({16, 16, 1}, mesh::Vec3(0.25, 0.25, 0.1));
+  const auto once = main_job(input, std::numeric_limits<double>::infinity(), false);
+  Report report;
+  const auto twice = main_job(input, std::numeric_limits<double>::infinity(), true, &report);
+  ASSERT_TRUE(report.json().contains("thin_part_retry")) << once.max_amips << " " << once.min_scaled_jacobian;
+  EXPECT_EQ(report.json()["thin_part_retry"]["kept"], "second") << report.json()["thin_part_retry"].dump();
+  EXPECT_TRUE(once.max_amips > 30 || once.min_scaled_jacobian < 0.02) << once.max_amips << " " << once.min_scaled_jacobian;
+  EXPECT_LE(twice.max_amips, 30) << twice.tets << " tets";
+  EXPECT_GE(twice.min_scaled_jacobian, 0.02) << twice.tets << " tets";
 }

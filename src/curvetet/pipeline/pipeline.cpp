@@ -13,7 +13,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <functional>
 
 #include <memory>
@@ -45,6 +48,8 @@ constexpr double kSlabQualityBound = 150;
 constexpr double kCurvedQualityBound = 25;
 constexpr double kFillCoarsenEnergy = 100;
 constexpr double kFillEdgeFactor = 4;
+// The thickness rule's ratio on the second try (PipelineOptions::thin_part_retry).
+constexpr double kThinPartRatio = 3;
 
 // The shell's middle surface as the assembly takes it: its fitted nodes, or
 // the flat triangles (degree 1) when it was not curved.
@@ -278,10 +283,10 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
   return r;
 }
 
-} // namespace
-
-PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOptions& o, Report& report,
-                            const features::FeatureGraph* features) {
+// run_stages, and again with a flat middle should an assembled tet not be
+// certified with the curved one.
+PipelineResult run_with_fallback(const mesh::SurfaceMesh& input, const PipelineOptions& o, Report& report,
+                                 const features::FeatureGraph* features) {
   int uncertified = 0;
   const auto start = std::chrono::steady_clock::now();
   auto r = run_stages(input, o, report, features, &uncertified);
@@ -300,6 +305,64 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
   flat.curved_middle = false;
   r = run_stages(input, flat, report, features, nullptr); // rewrites every stage's entry
   report["curved_middle_fallback"] = {{"uncertified_tets", uncertified}, {"seconds_of_the_curved_run", seconds}};
+  return r;
+}
+
+// How far a verified mesh's worst elements are outside the targets: 1 or
+// less when both are met.
+double shortfall(const check::TetMeshVerification& v, const PipelineOptions& o) {
+  const double sj = v.worst_scaled_jacobian > 0 ? o.target_min_scaled_jacobian / v.worst_scaled_jacobian
+                                                : std::numeric_limits<double>::infinity();
+  return std::max(v.worst_amips / o.target_max_amips, sj);
+}
+
+nlohmann::json run_summary(const PipelineResult& r, double seconds) {
+  return {{"tets", r.mesh.num_tets()},
+          {"boundary_triangles", r.mesh.num_boundary()},
+          {"max_amips", r.verification.worst_amips},
+          {"min_scaled_jacobian", r.verification.worst_scaled_jacobian},
+          {"seconds", seconds}};
+}
+
+} // namespace
+
+PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOptions& o, Report& report,
+                            const features::FeatureGraph* features) {
+  const auto start = std::chrono::steady_clock::now();
+  auto r = run_with_fallback(input, o, report, features);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const bool misses = shortfall(r.verification, o) > 1;
+  if (!o.thin_part_retry || !misses || !o.coarsen || std::isfinite(o.thickness_ratio) || !r.verification.ok())
+    return r;
+  // Thin walls and sheets under long coarse triangles leave only flat tets
+  // between them, which no operation of the volume stage can improve
+  // (docs/usable_elements.md, session 37); the thickness rule avoids them
+  // at the price of more tets, and moves the coarsening of other models
+  // either way, so it runs only as a second try, and the output nearer the
+  // targets is kept.
+  logger().info("max AMIPS {:.4g}, min scaled Jacobian {:.3g} miss the targets ({:.4g}, {:.3g}); running again with "
+                "--thickness-ratio {}",
+                r.verification.worst_amips, r.verification.worst_scaled_jacobian, o.target_max_amips,
+                o.target_min_scaled_jacobian, kThinPartRatio);
+  PipelineOptions thin = o;
+  thin.thickness_ratio = kThinPartRatio;
+  Report second = report;
+  const auto start2 = std::chrono::steady_clock::now();
+  auto r2 = run_with_fallback(input, thin, second, features);
+  const double seconds2 = std::chrono::duration<double>(std::chrono::steady_clock::now() - start2).count();
+  const bool keep = r2.verification.ok() && shortfall(r2.verification, o) < shortfall(r.verification, o);
+  const nlohmann::json retry = {{"thickness_ratio", kThinPartRatio},
+                                {"first", run_summary(r, seconds)},
+                                {"second", run_summary(r2, seconds2)},
+                                {"kept", keep ? "second" : "first"}};
+  logger().info("keeping the {} run: max AMIPS {:.4g}, min scaled Jacobian {:.3g}, {} tets", keep ? "second" : "first",
+                (keep ? r2 : r).verification.worst_amips, (keep ? r2 : r).verification.worst_scaled_jacobian,
+                (keep ? r2 : r).mesh.num_tets());
+  if (keep) {
+    report = std::move(second);
+    r = std::move(r2);
+  }
+  report["thin_part_retry"] = retry;
   return r;
 }
 

@@ -49,6 +49,13 @@ struct PipelineOptions {
   // solid's thickness under it (shell/local_thickness.hpp; 3-4 keep thin
   // walls and tubes from flat tets, at the price of more tets); inf: no rule.
   double thickness_ratio = std::numeric_limits<double>::infinity();
+  // Without a thickness_ratio: when the verified output's max AMIPS or min
+  // scaled Jacobian (the validator's convention) misses these targets, the
+  // stages run again with the thickness rule (ratio 3), and the output
+  // nearer the targets is kept (report "thin_part_retry").
+  bool thin_part_retry = true;
+  double target_max_amips = 30;
+  double target_min_scaled_jacobian = 0.02;
   bool optimize = true;                // curved optimization after the assembly
   volume::CurvedRemeshOptions optimization;
   // Points of the input (face, barycentric; features file "points") where
