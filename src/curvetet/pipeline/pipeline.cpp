@@ -16,8 +16,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <functional>
+#include <limits>
 
 #include <memory>
 #include "curvetet/shell/extrusion.hpp"
