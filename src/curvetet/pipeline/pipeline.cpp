@@ -13,11 +13,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
-#include <limits>
 
 #include <memory>
 #include "curvetet/shell/extrusion.hpp"
