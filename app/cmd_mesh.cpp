@@ -63,8 +63,8 @@ std::function<int()> add_mesh_options(CLI::App& root) {
                   "it (3-4: no flat tets across thin walls and tubes, more tets; default: no such rule)")
       ->check(CLI::PositiveNumber);
   root.add_flag("!--no-thin-retry", o->pipeline.thin_part_retry,
-                "Do not run again with --thickness-ratio 3 when the elements miss max AMIPS 30 or min scaled "
-                "Jacobian 0.02 (by default its output is kept if it meets both or is better in both)");
+                "Do not run again with --thickness-ratio 3 (then 2) when the elements miss max AMIPS 30 or min "
+                "scaled Jacobian 0.02 (by default a retry's output is kept if it meets both or is better in both)");
   root.add_flag("--slab-layer", o->pipeline.slab_layer,
                 "Fill inside the shell's bottom surface and keep the bottom slabs (the paper's assembly; by default "
                 "the interior is filled straight on the middle surface whenever all its tets certify)");

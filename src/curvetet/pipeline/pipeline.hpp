@@ -13,8 +13,9 @@
 // optimization; if any is not positive (seen on nefertiti, see run_pipeline),
 // everything runs again with a flat middle (report "curved_middle_fallback").
 // When the output's worst elements miss the quality targets, everything runs
-// again with the coarsening's thickness rule, kept if it meets them or is
-// better in both measures (report "thin_part_retry"; PipelineOptions).
+// again with the coarsening's thickness rule (ratio 3, then 2 when that was
+// kept and meets one target only), kept if it meets them or is better in both
+// measures (report "thin_part_retry"; PipelineOptions).
 // Each stage is timed into the report. Stages that later issues add
 // (coarsening, curved fit, curved optimization) slot in between without
 // changing this interface.
@@ -55,7 +56,8 @@ struct PipelineOptions {
   // Without a thickness_ratio: when the verified output's max AMIPS or min
   // scaled Jacobian (the validator's convention) misses these targets, the
   // stages run again with the thickness rule (ratio 3), whose output is kept
-  // when it meets them or is better in both (report "thin_part_retry").
+  // when it meets them or is better in both; when kept and meeting one
+  // target only, again with ratio 2 (report "thin_part_retry").
   bool thin_part_retry = true;
   double target_max_amips = 30;
   double target_min_scaled_jacobian = 0.02;
