@@ -285,6 +285,10 @@ PipelineResult run_stages(const mesh::SurfaceMesh& input, const PipelineOptions&
   return r;
 }
 
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 // run_stages, and again with a flat middle should an assembled tet not be
 // certified with the curved one.
 PipelineResult run_with_fallback(const mesh::SurfaceMesh& input, const PipelineOptions& o, Report& report,
@@ -299,7 +303,7 @@ PipelineResult run_with_fallback(const mesh::SurfaceMesh& input, const PipelineO
   // run; it keeps the output valid should an assembled tet still not be
   // certified: a flat middle's tets are straight, positive by the prism
   // invariant.
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   logger().warn("{} assembled tets are not certified positive with the curved middle; running again with a flat "
                 "middle",
                 uncertified);
@@ -339,45 +343,41 @@ PipelineResult run_pipeline(const mesh::SurfaceMesh& input, const PipelineOption
                             const features::FeatureGraph* features) {
   const auto start = std::chrono::steady_clock::now();
   auto r = run_with_fallback(input, o, report, features);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const bool may_retry = o.thin_part_retry && o.coarsen && !std::isfinite(o.thickness_ratio);
   if (!may_retry || !r.verification.ok() || meets_targets(r.verification, o)) return r;
+  const nlohmann::json first = run_summary(r, seconds_since(start));
+  logger().info("max AMIPS {:.4g}, min scaled Jacobian {:.3g} miss the targets ({:.4g}, {:.3g})",
+                r.verification.worst_amips, r.verification.worst_scaled_jacobian, o.target_max_amips,
+                o.target_min_scaled_jacobian);
   // Thin walls and sheets under long coarse triangles leave only flat tets
   // between them, which no operation of the volume stage can improve
   // (docs/usable_elements.md, session 37); the thickness rule avoids them
   // at the price of more tets, and moves the coarsening of other models
-  // either way, so it runs only as a retry, whose output is kept when it
+  // either way. So it runs only as a retry, whose output is kept when it
   // meets the targets or is better in both measures than the one kept.
-  const nlohmann::json first = run_summary(r, seconds);
   nlohmann::json retries = nlohmann::json::array();
   double kept_ratio = 0;
   for (const double ratio : kThinPartRatios) {
-    logger().info("max AMIPS {:.4g}, min scaled Jacobian {:.3g} miss the targets ({:.4g}, {:.3g}); running again "
-                  "with --thickness-ratio {}",
-                  r.verification.worst_amips, r.verification.worst_scaled_jacobian, o.target_max_amips,
-                  o.target_min_scaled_jacobian, ratio);
+    logger().info("running again with --thickness-ratio {}", ratio);
     PipelineOptions thin = o;
     thin.thickness_ratio = ratio;
     Report attempt = report;
     const auto start_attempt = std::chrono::steady_clock::now();
     auto again = run_with_fallback(input, thin, attempt, features);
-    const double seconds_attempt =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_attempt).count();
     const bool keep = again.verification.ok() && (meets_targets(again.verification, o) ||
                                                   better_in_both(again.verification, r.verification));
-    auto summary = run_summary(again, seconds_attempt);
+    auto summary = run_summary(again, seconds_since(start_attempt));
     summary["thickness_ratio"] = ratio;
     summary["kept"] = keep;
     retries.push_back(std::move(summary));
+    logger().info("max AMIPS {:.4g}, min scaled Jacobian {:.3g}, {} tets: {}", again.verification.worst_amips,
+                  again.verification.worst_scaled_jacobian, again.mesh.num_tets(), keep ? "kept" : "not kept");
     if (!keep) break;
     kept_ratio = ratio;
     report = std::move(attempt);
     r = std::move(again);
     if (meets_targets(r.verification, o) || !meets_one_target(r.verification, o)) break;
   }
-  logger().info("keeping the run {}: max AMIPS {:.4g}, min scaled Jacobian {:.3g}, {} tets",
-                kept_ratio > 0 ? fmt::format("with --thickness-ratio {}", kept_ratio) : std::string("without a ratio"),
-                r.verification.worst_amips, r.verification.worst_scaled_jacobian, r.mesh.num_tets());
   report["thin_part_retry"] = {{"first", first},
                                {"retries", std::move(retries)},
                                {"kept_thickness_ratio", kept_ratio > 0 ? nlohmann::json(kept_ratio) : nlohmann::json()}};
