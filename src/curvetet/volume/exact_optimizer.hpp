@@ -2,13 +2,15 @@
 // INTERNAL to volume/optimize*.cpp and volume/exact_optimizer_*.cpp: the
 // linear fill's optimizer (paper §4.3 step 5) as one class, its operations
 // in one file per kind:
-//   exact_optimizer_mesh.cpp      adjacency, transactions (journal), rounding
+//   exact_optimizer_mesh.cpp      transactions (journal), rounding; the tets
+//                                 and their stars are edit::TetStars
 //   exact_optimizer_smooth.cpp    energies, smoothing, worst-tet moves
 //   exact_optimizer_collapse.cpp  collapses and their link conditions
 //   exact_optimizer_flips.cpp     2-3, 3-2 flips and edge removal
 //   exact_optimizer_insert.cpp    splits, insertions, cavities
 // and the schedule (passes, round_and_optimize) in optimize.cpp. What every
 // operation keeps: optimize.hpp.
+#include "curvetet/volume/edit/tet_stars.hpp"
 #include "curvetet/volume/exact_mesh.hpp"
 #include "curvetet/volume/fill.hpp"
 
@@ -56,7 +58,8 @@ class Optimizer {
   bool collapse_on_surface(int v, int u);
 
   ExactTetMesh& mesh() { return m_; }
-  bool alive(int t) const { return alive_[t]; }
+  bool alive(int t) const { return stars_.alive(t); }
+  const Tet& tet(int t) const { return stars_.corners(t); }
 
   double energy(const Tet& t) const;
   // Energy of live tet t, cached until it or one of its vertices changes.
@@ -200,11 +203,11 @@ class Optimizer {
   // 3-2 flips of those edges then leave fewer than k tets.
   bool remove_edge_then_32(int a, int b);
 
-  std::vector<int> edge_ring(int a, int b) const;
+  std::vector<int> edge_ring(int a, int b) const { return stars_.edge_ring(a, b); }
 
   // The ring of interior edge (a, b) (its tets `ring`) as a vertex cycle,
   // empty when the fan around the edge is open (a boundary edge).
-  std::vector<int> ring_cycle(int a, int b, const std::vector<int>& ring) const;
+  std::vector<int> ring_cycle(int a, int b, const std::vector<int>& ring) const { return stars_.ring_cycle(a, b, ring); }
 
   // False when the fan of fan_tets(a, b, c, i) surely has a tet of energy
   // at least `bound`, by the doubles alone: a tet's energy in the orientation
@@ -233,10 +236,10 @@ class Optimizer {
   // 2-3: interior face of tet t opposite its corner k.
   bool flip_23(int t, int k);
 
-  std::vector<int> neighbours(int v) const;
-  int num_tets() const { return static_cast<int>(m_.tets.size()); }
-  std::size_t num_alive() const { return static_cast<std::size_t>(std::count(alive_.begin(), alive_.end(), 1)); }
-  const std::vector<int>& star(int v) const { return vt_[v]; }
+  std::vector<int> neighbours(int v) const { return stars_.neighbours(v); }
+  int num_tets() const { return stars_.num_slots(); } // slots, dead ones included
+  std::size_t num_alive() const;
+  const std::vector<int>& star(int v) const { return stars_.star(v); }
 
   mesh::LinearTetMesh extract(int num_keep);
 
@@ -266,8 +269,7 @@ class Optimizer {
   bool journaling_ = false;
   std::vector<std::pair<int, bool>> journal_; // (tet, added) of the open transaction
   std::vector<std::pair<int, std::uint64_t>> saved_touched_; // (vertex, touched_ before) in it
-  std::vector<std::vector<int>> vt_;
-  std::vector<char> alive_;
+  edit::TetStars stars_; // the tets (m_.tets is left empty)
   mutable std::vector<std::array<int, 4>> across_; // per tet: neighbours found so far (-1: not known)
   mutable std::array<std::vector<std::array<int, 3>>, 3> link_tris_;
   mutable std::array<std::vector<std::array<int, 2>>, 4> link_edges_;
@@ -294,8 +296,8 @@ class Optimizer {
   bool orient_positive(Tet& t) const { return m_.v.orient(t[0], t[1], t[2], t[3]) > 0; }
   void kill(int t);
   int add(const Tet& t);
-  bool edge_exists(int a, int b) const;
-  bool face_exists(int a, int b, int c) const;
+  bool edge_exists(int a, int b) const { return stars_.has_edge(a, b); }
+  bool face_exists(int a, int b, int c) const { return stars_.has_face(a, b, c); }
   // lk(u) ∩ lk(v) = lk(uv) (v interior, so no virtual boundary vertex).
   bool link_condition(int u, int v) const;
 };

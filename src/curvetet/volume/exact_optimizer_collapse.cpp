@@ -17,8 +17,8 @@ Tet moved(Tet q, int v, int u) {
 
 bool Optimizer::surface_collapse_allowed(int v, int u, std::vector<int>& removed, double* worst) const {
   removed.clear();
-  for (int t : vt_[v]) {
-    const Tet& q = m_.tets[t];
+  for (int t : stars_.star(v)) {
+    const Tet& q = stars_.corners(t);
     if (std::find(q.begin(), q.end(), u) != q.end()) {
       removed.push_back(t);
       continue;
@@ -48,13 +48,13 @@ bool Optimizer::collapse_on_surface(int v, int u) {
 bool Optimizer::collapse(int v, int u, Keep keep) {
   if (m_.frozen[v] || pinned(v) || u == v) return false;
   double old_max = 0;
-  for (int t : vt_[v]) old_max = std::max(old_max, tet_energy(t));
+  for (int t : stars_.star(v)) old_max = std::max(old_max, tet_energy(t));
   const double bound = std::max(old_max, coarsen_energy_);
   const bool require_quality = keep == Keep::quality;
   // The new tets: energy first (cheap), exact orientation last.
   std::vector<int> removed;
-  for (int t : vt_[v]) {
-    const Tet& q = m_.tets[t];
+  for (int t : stars_.star(v)) {
+    const Tet& q = stars_.corners(t);
     if (std::find(q.begin(), q.end(), u) != q.end()) {
       removed.push_back(t);
       continue;
@@ -84,21 +84,18 @@ bool Optimizer::collapse(int v, int u, Keep keep) {
 void Optimizer::merge(int v, int u, const std::vector<int>& removed) {
   for (int t : removed) kill(t);
   ++clock_;
-  for (int t : std::vector<int>(vt_[v])) {
+  for (int t : std::vector<int>(stars_.star(v))) {
     across_[t] = {-1, -1, -1, -1};
-    for (int& x : m_.tets[t])
-      if (x == v) x = u;
-    vt_[u].push_back(t);
+    stars_.rename_corner(t, v, u);
     energy_[t] = kStale;
-    for (int x : m_.tets[t]) touched_[x] = clock_;
+    for (int x : stars_.corners(t)) touched_[x] = clock_;
   }
-  vt_[v].clear();
 }
 
 std::vector<std::array<int, 2>> Optimizer::boundary_link(int x) const {
   std::vector<std::array<int, 3>> faces;
-  for (int t : vt_[x]) {
-    const Tet& q = m_.tets[t];
+  for (int t : stars_.star(x)) {
+    const Tet& q = stars_.corners(t);
     for (int k = 0; k < 4; ++k) {
       if (q[k] == x) continue;
       std::array<int, 3> f;
@@ -165,10 +162,10 @@ bool Optimizer::link_condition(int u, int v) const {
     tris.clear();
     edges.clear();
     verts.clear();
-    for (int t : vt_[x]) {
+    for (int t : stars_.star(x)) {
       std::array<int, 3> f;
       int j = 0;
-      for (int y : m_.tets[t])
+      for (int y : stars_.corners(t))
         if (y != x) f[j++] = y;
       std::sort(f.begin(), f.end());
       tris.push_back(f);
@@ -188,8 +185,8 @@ bool Optimizer::link_condition(int u, int v) const {
   // lk(uv): opposite edges of the tets containing both.
   euv.clear();
   puv.clear();
-  for (int t : vt_[v]) {
-    const Tet& q = m_.tets[t];
+  for (int t : stars_.star(v)) {
+    const Tet& q = stars_.corners(t);
     if (std::find(q.begin(), q.end(), u) == q.end()) continue;
     std::array<int, 2> e;
     int j = 0;

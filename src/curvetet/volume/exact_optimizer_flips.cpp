@@ -14,7 +14,7 @@ bool Optimizer::flip_32(int a, int b, const std::vector<int>& ring) {
   if (ring.size() != 3) return false;
   std::vector<int> others;
   for (int t : ring)
-    for (int x : m_.tets[t])
+    for (int x : stars_.corners(t))
       if (x != a && x != b) others.push_back(x);
   std::sort(others.begin(), others.end());
   // closed ring: three vertices, each twice
@@ -110,27 +110,6 @@ bool Optimizer::remove_edge_then_32(int a, int b) {
   return false;
 }
 
-std::vector<int> Optimizer::edge_ring(int a, int b) const {
-  std::vector<int> ring;
-  for (int t : vt_[a]) {
-    const Tet& q = m_.tets[t];
-    if (std::find(q.begin(), q.end(), b) != q.end()) ring.push_back(t);
-  }
-  return ring;
-}
-
-std::vector<int> Optimizer::ring_cycle(int a, int b, const std::vector<int>& ring) const {
-  std::vector<std::array<int, 2>> links;
-  for (int t : ring) {
-    std::array<int, 2> e;
-    int j = 0;
-    for (int x : m_.tets[t])
-      if (x != a && x != b) e[j++] = x;
-    links.push_back(e);
-  }
-  return volume::ring_cycle(links);
-}
-
 bool Optimizer::fan_may_beat(int a, int b, const std::vector<int>& c, int i, double bound) const {
   const int k = static_cast<int>(c.size());
   const auto& d = m_.v.d;
@@ -162,7 +141,7 @@ std::vector<Tet> Optimizer::fan_tets(int a, int b, const std::vector<int>& c, in
 }
 
 bool Optimizer::flip_23(int t, int k) {
-  const Tet q = m_.tets[t];
+  const Tet q = stars_.corners(t);
   const int d = q[k];
   std::array<int, 3> f;
   for (int i = 0, j = 0; i < 4; ++i)
@@ -170,9 +149,9 @@ bool Optimizer::flip_23(int t, int k) {
   // (f0, f1, f2, d) is q up to moving corner k last: parity 3 - k.
   if ((3 - k) % 2 == 1) std::swap(f[0], f[1]);
   int other = -1;
-  for (int s : vt_[f[0]]) {
+  for (int s : stars_.star(f[0])) {
     if (s == t) continue;
-    const Tet& r = m_.tets[s];
+    const Tet& r = stars_.corners(s);
     if (std::find(r.begin(), r.end(), f[1]) != r.end() && std::find(r.begin(), r.end(), f[2]) != r.end()) {
       other = s;
       break;
@@ -180,7 +159,7 @@ bool Optimizer::flip_23(int t, int k) {
   }
   if (other < 0) return false;
   int e = -1;
-  for (int x : m_.tets[other])
+  for (int x : stars_.corners(other))
     if (x != f[0] && x != f[1] && x != f[2]) e = x;
   if (edge_exists(d, e)) return false;
   const double old_max = std::max(tet_energy(t), tet_energy(other));

@@ -15,7 +15,7 @@ bool Optimizer::split_edge(int a, int b, const std::vector<int>& ring) {
   std::vector<Tet> halves;
   for (int t : ring)
     for (int end : {a, b}) {
-      Tet h = m_.tets[t];
+      Tet h = stars_.corners(t);
       for (int& x : h)
         if (x == end) x = -1; // the new vertex
       halves.push_back(h);
@@ -31,7 +31,7 @@ bool Optimizer::split_edge(int a, int b, const std::vector<int>& ring) {
 }
 
 bool Optimizer::split_tet(int t) {
-  const Tet q = m_.tets[t];
+  const Tet q = stars_.corners(t);
   const double old_max = tet_energy(t);
   const int m = add_vertex(0.25 * (m_.v.d[q[0]] + m_.v.d[q[1]] + m_.v.d[q[2]] + m_.v.d[q[3]]));
   std::array<Tet, 4> parts;
@@ -50,7 +50,7 @@ bool Optimizer::commit_split(int m, const std::vector<int>& old, const std::vect
   journaling_ = false;
   compass_search(m, old_max);
   double new_max = 0;
-  for (int t : vt_[m]) new_max = std::max(new_max, tet_energy(t));
+  for (int t : stars_.star(m)) new_max = std::max(new_max, tet_energy(t));
   if (new_max < old_max) {
     ++stats_.splits;
     return true;
@@ -60,8 +60,8 @@ bool Optimizer::commit_split(int m, const std::vector<int>& old, const std::vect
 }
 
 bool Optimizer::relocate_through_cavity(int v, const Vec3& target) {
-  if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || vt_[v].empty()) return false;
-  if (!restar(v, target, vt_[v])) return false;
+  if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || stars_.star(v).empty()) return false;
+  if (!restar(v, target, stars_.star(v))) return false;
   ++stats_.relocations;
   return true;
 }
@@ -71,7 +71,7 @@ bool Optimizer::insert_vertex(int from, const Vec3& p) {
   if (holder < 0) return false;
   std::vector<int> cavity{holder};
   ++cavity_stamp_;
-  cavity_mark_.resize(m_.tets.size(), 0);
+  cavity_mark_.resize(stars_.num_slots(), 0);
   cavity_mark_[holder] = cavity_stamp_;
   for (std::size_t i = 0; i < cavity.size() && cavity.size() < kMaxCavity / 4; ++i)
     for (int k = 0; k < 4; ++k) {
@@ -89,7 +89,7 @@ bool Optimizer::insert_vertex(int from, const Vec3& p) {
 int Optimizer::locate(int from, const Vec3& p) const {
   int t = from;
   for (int steps = 0; steps < 1000; ++steps) {
-    const Tet& q = m_.tets[t];
+    const Tet& q = stars_.corners(t);
     int exit = -1;
     for (int k = 0; k < 4 && exit < 0; ++k) {
       Tet c = q;
@@ -110,7 +110,7 @@ int Optimizer::orient_with(const Tet& c, const Vec3& p) const {
 }
 
 bool Optimizer::in_circumsphere(int t, const Vec3& p) const {
-  const Tet& q = m_.tets[t];
+  const Tet& q = stars_.corners(t);
   const Vec3 centre = circumcentre(m_.v.d[q[0]], m_.v.d[q[1]], m_.v.d[q[2]], m_.v.d[q[3]]);
   return centre.allFinite() && (p - centre).squaredNorm() < (m_.v.d[q[0]] - centre).squaredNorm();
 }
@@ -118,7 +118,7 @@ bool Optimizer::in_circumsphere(int t, const Vec3& p) const {
 bool Optimizer::restar(int v, const Vec3& target, const std::vector<int>& seed, bool search) {
   std::vector<int> cavity = seed;
   ++cavity_stamp_;
-  cavity_mark_.resize(m_.tets.size(), 0);
+  cavity_mark_.resize(stars_.num_slots(), 0);
   for (int t : cavity) cavity_mark_[t] = cavity_stamp_;
   // Boundary faces as (tet, corner opposite): a new tet is that tet with v
   // at target in place of the corner.
@@ -127,7 +127,7 @@ bool Optimizer::restar(int v, const Vec3& target, const std::vector<int>& seed, 
   // (tet, corner, tet across): the across is kept for the final filter.
   std::vector<std::array<int, 3>> seen;
   for (std::size_t i = 0; i < cavity.size(); ++i) {
-    const Tet& q = m_.tets[cavity[i]];
+    const Tet& q = stars_.corners(cavity[i]);
     const bool in_star = std::find(q.begin(), q.end(), v) != q.end();
     for (int k = 0; k < 4; ++k) {
       if (in_star && q[k] != v) continue;
@@ -152,7 +152,7 @@ bool Optimizer::restar(int v, const Vec3& target, const std::vector<int>& seed, 
   std::vector<Tet> parts;
   bool better = true;
   for (auto [t, k] : faces) {
-    Tet c = m_.tets[t];
+    Tet c = stars_.corners(t);
     c[k] = v;
     better = better && energy_at(c, v, target) < old_max;
     if (!better && !search) return false; // before the costlier sphere check
@@ -178,7 +178,7 @@ bool Optimizer::bounds_sphere(const std::vector<std::pair<int, int>>& faces) con
   for (auto [t, k] : faces) {
     std::array<int, 3> f;
     for (int i = 0, j = 0; i < 4; ++i)
-      if (i != k) f[j++] = m_.tets[t][i];
+      if (i != k) f[j++] = stars_.corners(t)[i];
     if (k % 2 == 0) std::swap(f[0], f[1]); // (f, corner k) has q's parity: one orientation for all
     tris.push_back(f);
   }

@@ -14,7 +14,7 @@ double Optimizer::energy(const Tet& t) const {
 }
 
 double Optimizer::tet_energy(int t) {
-  if (std::isnan(energy_[t])) energy_[t] = energy(m_.tets[t]);
+  if (std::isnan(energy_[t])) energy_[t] = energy(stars_.corners(t));
   return energy_[t];
 }
 
@@ -41,8 +41,8 @@ double Optimizer::energy_gradient_at(const Tet& t, int v, const Vec3& p, Vec3& g
 }
 
 bool Optimizer::star_positive_at(int v, const Vec3& p) const {
-  for (int t : vt_[v])
-    if (m_.v.orient_at(m_.tets[t], v, p) <= 0) return false;
+  for (int t : stars_.star(v))
+    if (m_.v.orient_at(stars_.corners(t), v, p) <= 0) return false;
   return true;
 }
 
@@ -64,8 +64,8 @@ bool Optimizer::relocate(int v) {
   if (m_.frozen[v] || pinned(v) || m_.v.exact[v]) return false;
   Vec3 c = Vec3::Zero();
   int n = 0;
-  for (int t : vt_[v])
-    for (int x : m_.tets[t])
+  for (int t : stars_.star(v))
+    for (int x : stars_.corners(t))
       if (x != v) {
         c += m_.v.d[x];
         ++n;
@@ -83,7 +83,7 @@ bool Optimizer::relocate(int v) {
 }
 
 Vec3 Optimizer::best_corner(int t, int v) const {
-  const Tet& q = m_.tets[t];
+  const Tet& q = stars_.corners(t);
   Vec3 p = m_.v.d[v];
   double len = 0;
   for (int x : q) len += (m_.v.d[x] - p).norm();
@@ -112,25 +112,25 @@ Vec3 Optimizer::best_corner(int t, int v) const {
 }
 
 bool Optimizer::descend(int v) {
-  if (m_.frozen[v] || pinned(v) || vt_[v].empty()) return false;
+  if (m_.frozen[v] || pinned(v) || stars_.star(v).empty()) return false;
   const Vec3 p0 = m_.v.d[v];
   double e0 = 0, max0 = 0, len = 0;
   Vec3 g = Vec3::Zero(); // gradient of the sum of squares
-  for (int t : vt_[v]) {
+  for (int t : stars_.star(v)) {
     Vec3 gt;
-    const double e = energy_gradient_at(m_.tets[t], v, p0, gt);
+    const double e = energy_gradient_at(stars_.corners(t), v, p0, gt);
     if (!std::isfinite(e)) return false;
     e0 += e * e; // squared: the worst tets dominate
     max0 = std::max(max0, e);
     g += 2 * e * gt;
-    for (int x : m_.tets[t]) len += (m_.v.d[x] - p0).norm();
+    for (int x : stars_.corners(t)) len += (m_.v.d[x] - p0).norm();
   }
-  len /= 3.0 * static_cast<double>(vt_[v].size());
+  len /= 3.0 * static_cast<double>(stars_.star(v).size());
   if (!(len > 0)) return false;
   auto sum_at = [&](const Vec3& p, double* mx) {
     double s = 0, m = 0;
-    for (int t : vt_[v]) {
-      const double e = energy_at(m_.tets[t], v, p);
+    for (int t : stars_.star(v)) {
+      const double e = energy_at(stars_.corners(t), v, p);
       s += e * e;
       m = std::max(m, e);
     }
@@ -153,10 +153,10 @@ bool Optimizer::descend(int v) {
 }
 
 bool Optimizer::compass_search(int v, double goal) {
-  if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || vt_[v].empty()) return false;
+  if (m_.frozen[v] || pinned(v) || !m_.v.exact[v] || stars_.star(v).empty()) return false;
   Vec3 p = m_.v.d[v];
   std::vector<Tet> star;
-  for (int t : vt_[v]) star.push_back(m_.tets[t]);
+  for (int t : stars_.star(v)) star.push_back(stars_.corners(t));
   const double before = max_energy_at(star, v, p, nullptr);
   const double after = descend_max(star, v, p, [&](const Vec3& q) { return star_positive_at(v, q); }, goal);
   if (!(after < before)) return false;

@@ -2,6 +2,7 @@
 
 #include "curvetet/core/log.hpp"
 #include "curvetet/geometry/predicates.hpp"
+#include "curvetet/volume/edit/tet_stars.hpp"
 #include "curvetet/volume/mesh_keys.hpp"
 
 #include <algorithm>
@@ -14,16 +15,12 @@ namespace {
 // Tets of a tetrahedralization with their vertex stars, for edge removals.
 struct FlipMesh {
   const std::vector<mesh::Vec3>& p;
-  std::vector<std::array<int, 4>> tets;
-  std::vector<char> alive;
-  std::vector<std::vector<int>> star;
+  edit::TetStars m;
 
   std::unordered_set<std::uint64_t> surface_edges;
 
   FlipMesh(const BackgroundMesh& bg, const std::vector<mesh::Tri>& surface)
-      : p(bg.points), tets(bg.tets), alive(bg.tets.size(), 1), star(bg.points.size()) {
-    for (int t = 0; t < static_cast<int>(tets.size()); ++t)
-      for (int x : tets[t]) star[x].push_back(t);
+      : p(bg.points), m(bg.tets, static_cast<int>(bg.points.size())) {
     for (const auto& f : surface)
       for (int k = 0; k < 3; ++k) surface_edges.insert(edge_key(f[k], f[(k + 1) % 3]));
   }
@@ -31,19 +28,8 @@ struct FlipMesh {
   // The vertices around edge (d, e) in cyclic order, empty when the fan of
   // its tets is not closed.
   std::vector<int> ring(int d, int e, std::vector<int>& ring_tets) const {
-    ring_tets.clear();
-    std::vector<std::array<int, 2>> links;
-    for (int t : star[d]) {
-      const auto& q = tets[t];
-      if (std::find(q.begin(), q.end(), e) == q.end()) continue;
-      ring_tets.push_back(t);
-      std::array<int, 2> l;
-      int j = 0;
-      for (int x : q)
-        if (x != d && x != e) l[j++] = x;
-      links.push_back(l);
-    }
-    return ring_cycle(links);
+    ring_tets = m.edge_ring(d, e);
+    return m.ring_cycle(d, e, ring_tets);
   }
   // Replaces the tets around edge (d, e) by the two cones, from d and from
   // e, over a triangulation of its ring polygon that has the triangle (or,
@@ -80,18 +66,15 @@ struct FlipMesh {
     if (removed) *removed = ring_tets;
     return replace(ring_tets, parts);
   }
-  bool has_edge(int a, int b) const {
-    for (int t : star[a])
-      if (std::find(tets[t].begin(), tets[t].end(), b) != tets[t].end()) return true;
-    return false;
-  }
+  bool has_edge(int a, int b) const { return m.has_edge(a, b); }
   // The edges de whose ring holds x (the edges of x's link), sorted keys.
   std::vector<std::uint64_t> link_edges(int x) const {
     std::vector<std::uint64_t> out;
-    for (int t : star[x]) {
+    for (int t : m.star(x)) {
+      const auto& q = m.corners(t);
       std::array<int, 3> o;
       for (int i = 0, j = 0; i < 4; ++i)
-        if (tets[t][i] != x) o[j++] = tets[t][i];
+        if (q[i] != x) o[j++] = q[i];
       for (int k = 0; k < 3; ++k) out.push_back(edge_key(o[k], o[(k + 1) % 3]));
     }
     std::sort(out.begin(), out.end());
@@ -119,47 +102,33 @@ struct FlipMesh {
   // Edge uv through a face whose two tets have u and v as apexes: the 2-3
   // flip of that face.
   bool flip_23_for(int u, int v) {
-    for (int t : std::vector<int>(star[u])) {
+    for (int t : std::vector<int>(m.star(u))) {
       std::array<int, 3> f;
       for (int i = 0, j = 0; i < 4; ++i)
-        if (tets[t][i] != u) f[j++] = tets[t][i];
+        if (m.corners(t)[i] != u) f[j++] = m.corners(t)[i];
       const int n = across(t, f[0], f[1], f[2]);
-      if (n >= 0 && std::find(tets[n].begin(), tets[n].end(), v) != tets[n].end() && !flip_23(t, n).empty())
+      if (n >= 0 && std::find(m.corners(n).begin(), m.corners(n).end(), v) != m.corners(n).end() &&
+          !flip_23(t, n).empty())
         return true;
     }
     return false;
   }
   // Returns the new tets' ids.
   std::vector<int> replace(const std::vector<int>& old, const std::vector<std::array<int, 4>>& parts) {
-    for (int t : old) {
-      alive[t] = 0;
-      for (int x : tets[t]) star[x].erase(std::find(star[x].begin(), star[x].end(), t));
-    }
+    for (int t : old) m.kill(t);
     std::vector<int> ids;
-    for (const auto& q : parts) {
-      const int id = static_cast<int>(tets.size());
-      tets.push_back(q);
-      alive.push_back(1);
-      for (int x : q) star[x].push_back(id);
-      ids.push_back(id);
-    }
+    for (const auto& q : parts) ids.push_back(m.add(q));
     return ids;
   }
   void undo(const std::vector<int>& old, const std::vector<int>& added) {
-    for (int t : added) {
-      alive[t] = 0;
-      for (int x : tets[t]) star[x].erase(std::find(star[x].begin(), star[x].end(), t));
-    }
-    for (int t : old) {
-      alive[t] = 1;
-      for (int x : tets[t]) star[x].push_back(t);
-    }
+    for (int t : added) m.kill(t);
+    for (int t : old) m.revive(t);
   }
   // The tet sharing face (a, b, c) with t, or -1.
   int across(int t, int a, int b, int c) const {
-    for (int s : star[a]) {
+    for (int s : m.star(a)) {
       if (s == t) continue;
-      const auto& r = tets[s];
+      const auto& r = m.corners(s);
       if (std::find(r.begin(), r.end(), b) != r.end() && std::find(r.begin(), r.end(), c) != r.end()) return s;
     }
     return -1;
@@ -176,10 +145,10 @@ struct FlipMesh {
     std::vector<std::pair<int, int>> out;
     int t = -1;
     std::array<int, 3> f{};
-    for (int s : star[u]) {
+    for (int s : m.star(u)) {
       std::array<int, 3> g;
       for (int i = 0, j = 0; i < 4; ++i)
-        if (tets[s][i] != u) g[j++] = tets[s][i];
+        if (m.corners(s)[i] != u) g[j++] = m.corners(s)[i];
       if (line_pierces(u, v, g[0], g[1], g[2]) && orient(g[0], g[1], g[2], u) * orient(g[0], g[1], g[2], v) < 0) {
         t = s;
         f = g;
@@ -191,7 +160,7 @@ struct FlipMesh {
       if (n < 0) return std::nullopt;
       out.emplace_back(t, n);
       int w = -1;
-      for (int x : tets[n])
+      for (int x : m.corners(n))
         if (x != f[0] && x != f[1] && x != f[2]) w = x;
       if (w == v) return out;
       bool next = false;
@@ -209,14 +178,15 @@ struct FlipMesh {
   }
   // 2-3 flip of the face shared by tets t and n; empty if not convex.
   std::vector<int> flip_23(int t, int n) {
+    const auto &qt = m.corners(t), &qn = m.corners(n);
     std::array<int, 3> f;
     int j = 0, apex_t = -1, apex_n = -1;
-    for (int x : tets[t])
-      if (std::find(tets[n].begin(), tets[n].end(), x) != tets[n].end())
+    for (int x : qt)
+      if (std::find(qn.begin(), qn.end(), x) != qn.end())
         f[j++] = x;
       else
         apex_t = x;
-    for (int x : tets[n])
+    for (int x : qn)
       if (std::find(f.begin(), f.end(), x) == f.end()) apex_n = x;
     if (j != 3) return {};
     std::vector<std::array<int, 4>> parts;
@@ -253,8 +223,9 @@ struct FlipMesh {
         // Else remove an edge of the crossed face (fans from each vertex of
         // its ring): the configuration may be non-convex for 2-3.
         std::array<int, 3> f;
+        const auto &qt = m.corners(t), &qn = m.corners(n);
         for (int i = 0, j = 0; i < 4; ++i)
-          if (std::find(tets[n].begin(), tets[n].end(), tets[t][i]) != tets[n].end()) f[j++] = tets[t][i];
+          if (std::find(qn.begin(), qn.end(), qt[i]) != qn.end()) f[j++] = qt[i];
         for (int k = 0; k < 3 && !shorter; ++k) {
           const int x = f[k], y = f[(k + 1) % 3];
           if (surface_edges.count(edge_key(x, y))) continue;
@@ -277,18 +248,12 @@ struct FlipMesh {
       if (!has_edge(u, v) && !recover({u, v}) && !flip_23_for(u, v) && !recover_by_walk(u, v)) return false;
     return has_face(a, b, c) || recover({a, b, c});
   }
-  bool has_face(int a, int b, int c) const {
-    for (int t : star[a]) {
-      const auto& q = tets[t];
-      if (std::find(q.begin(), q.end(), b) != q.end() && std::find(q.begin(), q.end(), c) != q.end()) return true;
-    }
-    return false;
-  }
+  bool has_face(int a, int b, int c) const { return m.has_face(a, b, c); }
   BackgroundMesh compacted() const {
     BackgroundMesh out;
     out.points = p;
-    for (std::size_t t = 0; t < tets.size(); ++t)
-      if (alive[t]) out.tets.push_back(tets[t]);
+    for (int t = 0; t < m.num_slots(); ++t)
+      if (m.alive(t)) out.tets.push_back(m.corners(t));
     out.neighbours = face_neighbours(out.tets);
     return out;
   }

@@ -71,13 +71,12 @@ std::size_t surface_steiner_pass(Optimizer& o) {
 
 // Flips on every tet at or above threshold; returns how many were made.
 std::size_t flip_pass(Optimizer& o, double threshold) {
-  auto& m = o.mesh();
   const int nt = o.num_tets();
   std::size_t flips = 0;
   for (int t = 0; t < nt; ++t) {
     if (!o.alive(t)) continue;
     if (o.tet_energy(t) < threshold || o.flips_known_to_fail(t)) continue;
-    const auto q = m.tets[t];
+    const auto q = o.tet(t);
     // The edges' tets, found once: a flip that fails changes nothing (so t
     // is still alive below when none succeeded).
     std::array<std::vector<int>, 6> rings;
@@ -99,12 +98,11 @@ std::size_t flip_pass(Optimizer& o, double threshold) {
 // 3-2 flips (alone or after an edge removal) wherever they keep the energy
 // bound: each removes a tet.
 std::size_t flip_32_pass(Optimizer& o) {
-  auto& m = o.mesh();
-  const std::size_t before = o.mesh().tets.size();
+  const std::size_t before = static_cast<std::size_t>(o.num_tets());
   std::size_t flips = 0;
   for (std::size_t t = 0; t < before; ++t) {
     if (!o.alive(static_cast<int>(t))) continue;
-    const auto q = m.tets[t];
+    const auto q = o.tet(static_cast<int>(t));
     bool done = false;
     for (int i = 0; i < 4 && !done; ++i)
       for (int j = i + 1; j < 4 && !done; ++j) done = o.flip_32(q[i], q[j]) || o.remove_edge_then_32(q[i], q[j]);
@@ -126,7 +124,7 @@ bool on_still_bad(Optimizer& o, const std::vector<int>& bad, double above, Fix f
 template <class Fix>
 bool on_free_corner(Optimizer& o, int t, Fix fix) {
   auto& m = o.mesh();
-  for (int x : std::array<int, 4>(m.tets[t]))
+  for (int x : std::array<int, 4>(o.tet(t)))
     if (!m.frozen[x] && m.v.exact[x] && fix(x)) return true;
   return false;
 }
@@ -167,7 +165,7 @@ bool insert_worst(Optimizer& o, const std::vector<int>& bad, double above) {
   return on_still_bad(o, bad, above, [&](int t) {
     const auto& m = o.mesh();
     std::array<Vec3, 4> x;
-    for (int k = 0; k < 4; ++k) x[k] = m.v.d[m.tets[t][k]];
+    for (int k = 0; k < 4; ++k) x[k] = m.v.d[o.tet(t)[k]];
     std::vector<Vec3> candidates{circumcentre(x[0], x[1], x[2], x[3])};
     for (int k = 0; k < 4; ++k) {
       if (o.across(t, k) >= 0) continue;
@@ -190,7 +188,7 @@ bool split_worst(Optimizer& o, const std::vector<int>& bad, double above) {
   return on_still_bad(o, bad, above, [&](int t) {
     // An undone edge split re-creates t under a new id: t is split itself
     // only when it has no interior edge.
-    const auto q = o.mesh().tets[t];
+    const auto q = o.tet(t);
     bool interior = false;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
@@ -223,7 +221,7 @@ constexpr double kNearFloor = 1.01;
 // The least energy tet t can have while its boundary faces (input or box
 // faces, which stay) stay: 0 without one.
 double boundary_floor(Optimizer& o, int t) {
-  const Tet& q = o.mesh().tets[t];
+  const Tet& q = o.tet(t);
   const auto& d = o.mesh().v.d;
   double floor = 0;
   for (int k = 0; k < 4; ++k)
@@ -241,7 +239,7 @@ struct WorstPassPlan {
 void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
   auto& m = o.mesh();
   auto has_free_vertex = [&](int t) {
-    return std::any_of(m.tets[t].begin(), m.tets[t].end(), [&](int x) { return !m.frozen[x]; });
+    return std::any_of(o.tet(t).begin(), o.tet(t).end(), [&](int x) { return !m.frozen[x]; });
   };
   // With insertions, a tet that kMaxTries whole passes left above their
   // threshold is set aside, so that the passes go on down the tail behind
@@ -253,7 +251,7 @@ void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
   constexpr int kPolishPasses = 3;
   int polish = 0;
   auto corners = [&](int t) {
-    Tet q = m.tets[t];
+    Tet q = o.tet(t);
     std::sort(q.begin(), q.end());
     return q;
   };
@@ -319,7 +317,7 @@ void worst_pass(Optimizer& o, const WorstPassPlan& plan) {
     bool any = flip_pass(o, threshold) > 0;
     for (int t : bad)
       if (o.alive(t))
-        for (int x : std::array<int, 4>(m.tets[t])) any |= o.smooth_max(x);
+        for (int x : std::array<int, 4>(o.tet(t))) any |= o.smooth_max(x);
     any |= remove_blocked_vertices(o, bad, threshold);
     const double above = plan.insert ? threshold : std::max(threshold, plan.focus * mx_open);
     any |= relocate_worst(o, bad, above);
@@ -346,7 +344,7 @@ bool worst_is_frozen(Optimizer& o) {
   int worst = -1;
   for (int t = 0; t < o.num_tets(); ++t)
     if (o.alive(t) && (worst < 0 || o.tet_energy(t) > o.tet_energy(worst))) worst = t;
-  return worst >= 0 && std::all_of(m.tets[worst].begin(), m.tets[worst].end(), [&](int x) { return m.frozen[x]; });
+  return worst >= 0 && std::all_of(o.tet(worst).begin(), o.tet(worst).end(), [&](int x) { return m.frozen[x]; });
 }
 
 void smooth_pass(Optimizer& o) {

@@ -33,30 +33,31 @@ TetEditor::TetEditor(const mesh::TetMesh& m) : order_(m.order), np_(m.tet_nodes(
   key_of_.front().fill(-1);
   std::fill(key_of_.begin(), key_of_.end(), key_of_.front());
   refs_.assign(nodes_.size(), 0);
-  incident_.resize(nodes_.size());
   frozen_.assign(nodes_.size(), 0);
 
   const int n = m.num_tets();
-  corners_.resize(n);
+  std::vector<Corners> corners(n);
+  for (int t = 0; t < n; ++t)
+    for (int k = 0; k < 4; ++k) corners[t][k] = m.tet(t)[k];
+  stars_ = TetStars(std::move(corners), static_cast<int>(nodes_.size()));
   tet_nodes_.assign(m.tets.begin(), m.tets.end());
   tags_.resize(n);
-  alive_.assign(n, 1);
   shapes_.resize(n);
   shape_known_.assign(n, 0);
   std::map<std::array<int, 3>, int> face_uses;
   for (int t = 0; t < n; ++t) {
-    for (int k = 0; k < 4; ++k) corners_[t][k] = m.tet(t)[k];
+    const Corners& c = stars_.corners(t);
     tags_[t] = m.tet_tags.empty() ? 0 : m.tet_tags[t];
     for (int i = 0; i < np_; ++i) {
       const int id = m.tet(t)[i];
-      const Key key = node_key(corners_[t], i);
+      const Key key = node_key(c, i);
       if (key_of_[id][0] >= 0 && key_of_[id] != key) throw std::invalid_argument("TetEditor: node shared by two lattice points");
       if (!node_of_.insert(key, id) && node_of_.find(key) != id)
         throw std::invalid_argument("TetEditor: the mesh is not conforming (one lattice point, two nodes)");
       key_of_[id] = key;
     }
-    for (const auto& f : highorder::kTetFaces) ++face_uses[sorted(corners_[t][f[0]], corners_[t][f[1]], corners_[t][f[2]])];
-    link(t);
+    for (const auto& f : highorder::kTetFaces) ++face_uses[sorted(c[f[0]], c[f[1]], c[f[2]])];
+    ref_nodes(t);
     ++live_;
   }
   const int tn = m.triangle_nodes();
@@ -95,33 +96,7 @@ void TetEditor::positions(int t, Vec3* out) const {
   for (int i = 0; i < np_; ++i) out[i] = nodes_[ids[i]];
 }
 
-std::vector<int> TetEditor::neighbours(int v) const {
-  std::vector<int> out;
-  for (int t : incident_[v])
-    for (int w : corners_[t])
-      if (w != v) out.push_back(w);
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
-
 bool TetEditor::is_boundary_face(int a, int b, int c) const { return boundary_faces_.count(sorted(a, b, c)) > 0; }
-
-bool TetEditor::has_edge(int a, int b) const {
-  for (int t : incident_[a]) {
-    const auto& c = corners_[t];
-    if (std::find(c.begin(), c.end(), b) != c.end()) return true;
-  }
-  return false;
-}
-
-bool TetEditor::has_face(int a, int b, int c) const {
-  for (int t : incident_[a]) {
-    const auto& k = corners_[t];
-    if (std::find(k.begin(), k.end(), b) != k.end() && std::find(k.begin(), k.end(), c) != k.end()) return true;
-  }
-  return false;
-}
 
 void TetEditor::ref(int node) {
   if (refs_[node]++ == 0) node_of_.insert(key_of_[node], node);
@@ -131,17 +106,12 @@ void TetEditor::unref(int node) {
   if (--refs_[node] == 0) node_of_.erase(key_of_[node]);
 }
 
-void TetEditor::link(int t) {
-  for (int v : corners_[t]) incident_[v].push_back(t);
+void TetEditor::ref_nodes(int t) {
   const int* ids = nodes(t);
   for (int i = 0; i < np_; ++i) ref(ids[i]);
 }
 
-void TetEditor::unlink(int t) {
-  for (int v : corners_[t]) {
-    auto& list = incident_[v];
-    list.erase(std::find(list.begin(), list.end(), t));
-  }
+void TetEditor::unref_nodes(int t) {
   const int* ids = nodes(t);
   for (int i = 0; i < np_; ++i) unref(ids[i]);
 }
@@ -183,9 +153,8 @@ void TetEditor::begin() {
 }
 
 void TetEditor::kill(int t) {
-  if (!alive_[t]) throw std::logic_error("TetEditor: kill of a dead tet");
-  unlink(t);
-  alive_[t] = 0;
+  stars_.kill(t);
+  unref_nodes(t);
   --live_;
   journal_.push_back({Op::kill, t, Vec3::Zero()});
   killed_.push_back(t);
@@ -193,9 +162,7 @@ void TetEditor::kill(int t) {
 
 int TetEditor::add(Corners c, int tag) { // by value: c may be one of ours
   const int t = num_slots();
-  corners_.push_back(c);
   tags_.push_back(tag);
-  alive_.push_back(1);
   tet_nodes_.resize(tet_nodes_.size() + np_);
   int* ids = tet_nodes_.data() + static_cast<std::size_t>(t) * np_;
   for (int i = 0; i < 4; ++i) ids[i] = c[i];
@@ -212,12 +179,13 @@ int TetEditor::add(Corners c, int tag) { // by value: c may be one of ours
     nodes_.push_back(p);
     key_of_.push_back(key);
     refs_.push_back(0);
-    incident_.emplace_back();
+    stars_.add_vertex();
     frozen_.push_back(0);
     journal_.push_back({Op::new_node, id, Vec3::Zero()});
     ids[i] = id;
   }
-  link(t); // registers the new nodes' keys (first reference)
+  stars_.add(c);
+  ref_nodes(t); // registers the new nodes' keys (first reference)
   shapes_.emplace_back();
   shape_known_.push_back(0);
   ++live_;
@@ -235,7 +203,7 @@ int TetEditor::add_vertex(const Vec3& p) {
   key[1] = order_;
   key_of_.push_back(key);
   refs_.push_back(0);
-  incident_.emplace_back();
+  stars_.add_vertex();
   frozen_.push_back(0);
   journal_.push_back({Op::new_node, id, Vec3::Zero()});
   return id;
@@ -248,7 +216,7 @@ void TetEditor::move_node(int id, const Vec3& p) {
 
 void TetEditor::move_new_vertex(int v, const Vec3& d) {
   std::vector<int> moved;
-  for (int t : incident_[v]) {
+  for (int t : stars_.star(v)) {
     refresh_shape(t);
     const int* ids = nodes(t);
     for (int i = 0; i < np_; ++i) {
@@ -321,18 +289,17 @@ void TetEditor::commit() {
 void TetEditor::rollback() {
   for (auto e = journal_.rbegin(); e != journal_.rend(); ++e) switch (e->op) {
       case Op::add:
-        unlink(e->id);
-        corners_.pop_back();
+        unref_nodes(e->id);
+        stars_.pop_slot();
         tags_.pop_back();
-        alive_.pop_back();
         shapes_.pop_back();
         shape_known_.pop_back();
         tet_nodes_.resize(tet_nodes_.size() - np_);
         --live_;
         break;
       case Op::kill:
-        alive_[e->id] = 1;
-        link(e->id);
+        stars_.revive(e->id);
+        ref_nodes(e->id);
         ++live_;
         break;
       case Op::move: nodes_[e->id] = e->old; break;
@@ -341,7 +308,7 @@ void TetEditor::rollback() {
         nodes_.pop_back();
         key_of_.pop_back();
         refs_.pop_back();
-        incident_.pop_back();
+        stars_.pop_vertex();
         frozen_.pop_back();
         break;
     }
@@ -353,7 +320,7 @@ mesh::TetMesh TetEditor::to_mesh() const {
   mesh::TetMesh out = source_;
   std::vector<int> renumber(nodes_.size(), -1);
   for (int t = 0; t < num_slots(); ++t) {
-    if (!alive_[t]) continue;
+    if (!stars_.alive(t)) continue;
     const int* ids = nodes(t);
     for (int i = 0; i < np_; ++i) {
       int& r = renumber[ids[i]];

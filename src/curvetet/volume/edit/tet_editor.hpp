@@ -21,6 +21,7 @@
 #include "curvetet/mesh/tet_mesh.hpp"
 #include "curvetet/volume/edit/integer_hash.hpp"
 #include "curvetet/volume/edit/node_key_table.hpp"
+#include "curvetet/volume/edit/tet_stars.hpp"
 #include "curvetet/volume/edit/tet_shape.hpp"
 
 #include <array>
@@ -31,7 +32,6 @@
 namespace curvetet::volume::edit {
 
 using Vec3 = Eigen::Vector3d;
-using Corners = std::array<int, 4>;
 
 class TetEditor {
  public:
@@ -42,10 +42,10 @@ class TetEditor {
   int nodes_per_tet() const { return np_; }
 
   // Tet slots, dead ones included (ids stay valid until compaction).
-  int num_slots() const { return static_cast<int>(corners_.size()); }
+  int num_slots() const { return stars_.num_slots(); }
   int num_live() const { return live_; }
-  bool alive(int t) const { return alive_[t]; }
-  const Corners& corners(int t) const { return corners_[t]; }
+  bool alive(int t) const { return stars_.alive(t); }
+  const Corners& corners(int t) const { return stars_.corners(t); }
   const int* nodes(int t) const { return tet_nodes_.data() + static_cast<std::size_t>(t) * np_; }
   int tag(int t) const { return tags_[t]; }
   // Shape of tet t (evaluated on first use, then cached); kInvertedShape
@@ -59,13 +59,13 @@ class TetEditor {
   int num_nodes() const { return static_cast<int>(nodes_.size()); } // ids; corners among them have tets
 
   // Live tets having corner v (any order).
-  const std::vector<int>& tets_of(int v) const { return incident_[v]; }
+  const std::vector<int>& tets_of(int v) const { return stars_.star(v); }
   // Vertices sharing a live tet with v, ascending.
-  std::vector<int> neighbours(int v) const;
+  std::vector<int> neighbours(int v) const { return stars_.neighbours(v); }
   bool frozen(int v) const { return frozen_[v]; }
   bool is_boundary_face(int a, int b, int c) const;
-  bool has_edge(int a, int b) const;
-  bool has_face(int a, int b, int c) const;
+  bool has_edge(int a, int b) const { return stars_.has_edge(a, b); }
+  bool has_face(int a, int b, int c) const { return stars_.has_face(a, b, c); }
 
   // Transactions (not nested). Inside one: kill live tets, add tets, move
   // nodes.
@@ -99,8 +99,8 @@ class TetEditor {
   using Key = NodeKey;
   Key node_key(const Corners& c, int local) const;
   Vec3 straight_position(int node) const; // on the straight simplex of its key's corners
-  void link(int t);   // adjacency and node references of slot t
-  void unlink(int t);
+  void ref_nodes(int t); // node references of slot t
+  void unref_nodes(int t);
   void ref(int node);
   void unref(int node);
 
@@ -118,13 +118,11 @@ class TetEditor {
   std::vector<Key> key_of_;
   std::vector<int> refs_;
   NodeKeyTable node_of_; // live nodes
-  std::vector<Corners> corners_;
+  TetStars stars_; // corners and stars, by node id (corner vertices are nodes)
   std::vector<int> tet_nodes_;
   std::vector<int> tags_;
-  std::vector<char> alive_;
   mutable std::vector<TetShape> shapes_;
   mutable std::vector<char> shape_known_;
-  std::vector<std::vector<int>> incident_;
   std::vector<char> frozen_;
   std::unordered_set<std::array<int, 3>, IntegerHash> boundary_faces_; // sorted corner triples
   bool open_ = false;
