@@ -58,6 +58,7 @@ Command add_tetrahedralize_command(CLI::App& root) {
                                     {"rational_vertices", s.rational_vertices},
                                     {"unrounded_after_first_pass", s.unrounded_after_first_pass},
                                     {"collapses", s.collapses},             {"flips", s.flips},
+                                    {"rejected", s.rejected_json()},
                                     {"smooths", s.smooths},                 {"splits", s.splits}, {"relocations", s.relocations},
                                     {"seconds_insert", s.seconds_insert},
                                     {"seconds_layer", s.seconds_layer},     {"seconds_optimize", s.seconds_optimize},

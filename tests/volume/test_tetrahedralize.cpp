@@ -363,5 +363,22 @@ TEST(VolumeTetrahedralize, LayeredFlagForcesTheLayeredFill) {
   }
 }
 
+// The optimizer's rejections are counted by named reason: on a sphere its
+// collapses and flips are turned down for energy and for no gain, and no
+// reason is counted that the fill cannot meet (nothing is frozen but the
+// surface, whose vertices are never proposed for removal).
+TEST(VolumeTetrahedralize, OptimizerRejectionsAreCountedByReason) {
+  const auto r = volume::tetrahedralize(test::icosphere(3));
+  const auto& s = r.interior;
+  const auto count = [&](volume::FillReject why) { return s.rejected[static_cast<int>(why)]; };
+  EXPECT_GT(count(volume::FillReject::energy) + count(volume::FillReject::no_gain), 0u);
+  EXPECT_GT(count(volume::FillReject::topology), 0u);
+  EXPECT_EQ(count(volume::FillReject::sizing), 0u); // no sizing bound asked for
+  const auto json = s.rejected_json();
+  ASSERT_EQ(json.size(), static_cast<std::size_t>(volume::kFillRejectReasons));
+  for (int i = 0; i < volume::kFillRejectReasons; ++i)
+    EXPECT_TRUE(json.contains(volume::to_string(static_cast<volume::FillReject>(i)))) << i;
+}
+
 } // namespace
 } // namespace curvetet

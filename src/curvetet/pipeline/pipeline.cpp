@@ -118,7 +118,8 @@ bool assemble_with_slabs(PipelineResult& r, volume::CurvedMiddle& middle, const 
     report["fill"] = {{"tets", fill.num_tets()},
                       {"max_amips", stats.max_amips},
                       {"mean_amips", stats.mean_amips},
-                      {"min_scaled_jacobian", stats.min_scaled_jacobian}};
+                      {"min_scaled_jacobian", stats.min_scaled_jacobian},
+                      {"rejected", stats.rejected_json()}};
   }
 
   mesh::LinearTetMesh exterior;

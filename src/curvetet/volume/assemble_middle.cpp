@@ -306,6 +306,7 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
   const int n = static_cast<int>(middle.bottom.size());
   std::vector<char> retracted(n, 0);
   AssemblyStats stats;
+  FillStats fill_stats; // of the last fill_direct() that succeeded
   int layered_rounds = 0;
   using clock = std::chrono::steady_clock;
   const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
@@ -321,7 +322,7 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
     for (const double spacing : {kInteriorSpacing * mesh::mean_edge_length(surface), 0.0}) {
       FillOptions fo;
       fo.interior_spacing = spacing;
-      filled = fill_direct(surface, OffsetSide::inward, fo);
+      filled = fill_direct(surface, OffsetSide::inward, fo, &fill_stats);
       if (filled && verify_tet_mesh(*filled, surface.faces).ok()) break;
       filled.reset();
     }
@@ -351,7 +352,8 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
       const auto count = std::count_if(retracted.begin(), retracted.end(), [](char c) { return c != 0; });
       report = {{"on", "middle"},   {"rounds", round + 1},          {"retracted_vertices", count},
                 {"fill_tets", stats.fill_tets}, {"slab_tets", stats.slab_tets}, {"boundary_triangles", stats.boundary_triangles},
-                {"uncertified_tets", bad}, {"layered_fill_rounds", layered_rounds}};
+                {"uncertified_tets", bad}, {"layered_fill_rounds", layered_rounds},
+                {"fill_rejected", fill_stats.rejected_json()}};
       return bad == 0;
     }
   }

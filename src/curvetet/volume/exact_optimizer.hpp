@@ -53,7 +53,9 @@ class Optimizer {
   // The checks both share: every new tet positive, the link conditions;
   // `removed`: v's tets on edge (v, u); `worst` (optional) raised to the
   // largest energy of the new tets.
-  bool surface_collapse_allowed(int v, int u, std::vector<int>& removed, double* worst) const;
+  // `why` (optional) says which check failed.
+  bool surface_collapse_allowed(int v, int u, std::vector<int>& removed, double* worst,
+                                FillReject* why = nullptr) const;
 
   bool collapse_on_surface(int v, int u);
 
@@ -291,6 +293,11 @@ class Optimizer {
   // boundary face (u, v, p); an edge in both would duplicate a face.
   bool boundary_link_condition(int u, int v) const;
 
+  // Counts r in FillStats::rejected; `return reject(r);` where a check fails.
+  bool reject(FillReject r) const {
+    ++stats_.rejected[static_cast<int>(r)];
+    return false;
+  }
   // Whether a new edge (a, b) would break the sizing bound.
   bool too_long(int a, int b) const;
   bool orient_positive(Tet& t) const { return m_.v.orient(t[0], t[1], t[2], t[3]) > 0; }

@@ -15,7 +15,12 @@ Tet moved(Tet q, int v, int u) {
 }
 } // namespace
 
-bool Optimizer::surface_collapse_allowed(int v, int u, std::vector<int>& removed, double* worst) const {
+bool Optimizer::surface_collapse_allowed(int v, int u, std::vector<int>& removed, double* worst,
+                                         FillReject* why) const {
+  const auto fail = [&](FillReject r) {
+    if (why) *why = r;
+    return false;
+  };
   removed.clear();
   for (int t : stars_.star(v)) {
     const Tet& q = stars_.corners(t);
@@ -24,10 +29,12 @@ bool Optimizer::surface_collapse_allowed(int v, int u, std::vector<int>& removed
       continue;
     }
     const Tet n = moved(q, v, u);
-    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
+    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return fail(FillReject::positivity);
     if (worst) *worst = std::max(*worst, energy(n));
   }
-  return !removed.empty() && link_condition(u, v) && boundary_link_condition(u, v);
+  if (removed.empty()) return fail(FillReject::topology);
+  if (!link_condition(u, v) || !boundary_link_condition(u, v)) return fail(FillReject::link_condition);
+  return true;
 }
 
 double Optimizer::surface_collapse_cost(int v, int u) const {
@@ -38,7 +45,8 @@ double Optimizer::surface_collapse_cost(int v, int u) const {
 
 bool Optimizer::collapse_on_surface(int v, int u) {
   std::vector<int> removed;
-  if (!surface_collapse_allowed(v, u, removed, nullptr)) return false;
+  FillReject why{};
+  if (!surface_collapse_allowed(v, u, removed, nullptr, &why)) return reject(why);
   merge(v, u, removed);
   pinned_[v] = 0;
   ++stats_.collapses;
@@ -46,7 +54,7 @@ bool Optimizer::collapse_on_surface(int v, int u) {
 }
 
 bool Optimizer::collapse(int v, int u, Keep keep) {
-  if (m_.frozen[v] || pinned(v) || u == v) return false;
+  if (m_.frozen[v] || pinned(v) || u == v) return reject(FillReject::frozen);
   double old_max = 0;
   for (int t : stars_.star(v)) old_max = std::max(old_max, tet_energy(t));
   const double bound = std::max(old_max, coarsen_energy_);
@@ -62,20 +70,20 @@ bool Optimizer::collapse(int v, int u, Keep keep) {
     const Tet n = moved(q, v, u);
     if (require_quality) {
       const double e = energy(n);
-      if (!(e <= bound)) return false;
+      if (!(e <= bound)) return reject(FillReject::energy);
       // A tet on frozen vertices only can never be smoothed: keep it good.
       if (e > std::max(kFrozenTetLimit, coarsen_energy_) && m_.frozen[n[0]] && m_.frozen[n[1]] && m_.frozen[n[2]] &&
           m_.frozen[n[3]])
-        return false;
+        return reject(FillReject::frozen_tet_energy);
       for (int x : n)
-        if (x != u && too_long(u, x) && !edge_exists(u, x)) return false;
+        if (x != u && too_long(u, x) && !edge_exists(u, x)) return reject(FillReject::sizing);
     } else if (keep == Keep::lower_max && !(energy(n) < old_max)) {
-      return false;
+      return reject(FillReject::no_gain);
     }
-    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return false;
+    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return reject(FillReject::positivity);
   }
-  if (removed.empty()) return false; // not an edge
-  if (!link_condition(u, v)) return false;
+  if (removed.empty()) return reject(FillReject::topology); // not an edge
+  if (!link_condition(u, v)) return reject(FillReject::link_condition);
   merge(v, u, removed);
   ++stats_.collapses;
   return true;

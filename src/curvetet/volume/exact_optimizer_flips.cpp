@@ -11,7 +11,7 @@ namespace curvetet::volume::exact {
 bool Optimizer::flip_32(int a, int b) { return flip_32(a, b, edge_ring(a, b)); }
 
 bool Optimizer::flip_32(int a, int b, const std::vector<int>& ring) {
-  if (ring.size() != 3) return false;
+  if (ring.size() != 3) return reject(FillReject::topology);
   std::vector<int> others;
   for (int t : ring)
     for (int x : stars_.corners(t))
@@ -20,18 +20,18 @@ bool Optimizer::flip_32(int a, int b, const std::vector<int>& ring) {
   // closed ring: three vertices, each twice
   if (!(others.size() == 6 && others[0] == others[1] && others[2] == others[3] && others[4] == others[5] &&
         others[1] != others[2] && others[3] != others[4]))
-    return false;
+    return reject(FillReject::topology);
   const int c = others[0], d = others[2], e = others[4];
-  if (face_exists(c, d, e)) return false;
+  if (face_exists(c, d, e)) return reject(FillReject::duplicate_entity);
   double old_max = 0;
   for (int t : ring) old_max = std::max(old_max, tet_energy(t));
   // a and b must lie strictly on opposite sides of cde (then ab pierces it).
   const int sa = m_.v.orient(c, d, e, a), sb = m_.v.orient(c, d, e, b);
-  if (sa == 0 || sb != -sa) return false;
+  if (sa == 0 || sb != -sa) return reject(FillReject::positivity);
   Tet t1 = sa > 0 ? Tet{c, d, e, a} : Tet{d, c, e, a};
   Tet t2 = sa > 0 ? Tet{d, c, e, b} : Tet{c, d, e, b};
   const double new_max = std::max(energy(t1), energy(t2));
-  if (!(new_max < old_max || new_max <= coarsen_energy_)) return false;
+  if (!(new_max < old_max || new_max <= coarsen_energy_)) return reject(FillReject::no_gain);
   for (int t : ring) kill(t);
   add(t1);
   add(t2);
@@ -47,9 +47,9 @@ std::vector<int> Optimizer::interior_ring(int a, int b) const {
 
 bool Optimizer::remove_edge(int a, int b, const std::vector<int>& ring) {
   const int k = static_cast<int>(ring.size());
-  if (k < 4 || k > 7) return false;
+  if (k < 4 || k > 7) return reject(FillReject::topology);
   const auto c = ring_cycle(a, b, ring);
-  if (c.empty()) return false;
+  if (c.empty()) return reject(FillReject::topology);
   double best_max = 0;
   for (int t : ring) best_max = std::max(best_max, tet_energy(t));
   std::vector<Tet> best;
@@ -63,7 +63,7 @@ bool Optimizer::remove_edge(int a, int b, const std::vector<int>& ring) {
       best = std::move(nt);
     }
   }
-  if (best.empty()) return false;
+  if (best.empty()) return reject(FillReject::no_gain);
   for (int t : ring) kill(t);
   for (const auto& t : best) add(t);
   ++stats_.flips;
@@ -73,9 +73,9 @@ bool Optimizer::remove_edge(int a, int b, const std::vector<int>& ring) {
 bool Optimizer::remove_edge_then_32(int a, int b) {
   std::vector<int> ring = edge_ring(a, b);
   const int k = static_cast<int>(ring.size());
-  if (k < 4 || k > 6) return false;
+  if (k < 4 || k > 6) return reject(FillReject::topology);
   const auto c = ring_cycle(a, b, ring);
-  if (c.empty()) return false;
+  if (c.empty()) return reject(FillReject::topology);
   double old_max = 0;
   for (int t : ring) old_max = std::max(old_max, tet_energy(t));
   const double bound = std::max(old_max, coarsen_energy_);
@@ -107,7 +107,7 @@ bool Optimizer::remove_edge_then_32(int a, int b) {
     undo_journal();
     // try the next fan
   }
-  return false;
+  return reject(FillReject::no_gain);
 }
 
 bool Optimizer::fan_may_beat(int a, int b, const std::vector<int>& c, int i, double bound) const {
@@ -157,20 +157,20 @@ bool Optimizer::flip_23(int t, int k) {
       break;
     }
   }
-  if (other < 0) return false;
+  if (other < 0) return reject(FillReject::topology);
   int e = -1;
   for (int x : stars_.corners(other))
     if (x != f[0] && x != f[1] && x != f[2]) e = x;
-  if (edge_exists(d, e)) return false;
+  if (edge_exists(d, e)) return reject(FillReject::duplicate_entity);
   const double old_max = std::max(tet_energy(t), tet_energy(other));
   std::array<Tet, 3> nt;
   double new_max = 0;
   for (int i = 0; i < 3; ++i) {
     nt[i] = {f[i], f[(i + 1) % 3], e, d}; // positive iff de pierces f
-    if (!orient_positive(nt[i])) return false;
+    if (!orient_positive(nt[i])) return reject(FillReject::positivity);
     new_max = std::max(new_max, energy(nt[i]));
   }
-  if (!(new_max < old_max)) return false;
+  if (!(new_max < old_max)) return reject(FillReject::no_gain);
   kill(t);
   kill(other);
   for (auto& x : nt) add(x);

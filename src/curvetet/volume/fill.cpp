@@ -15,6 +15,27 @@
 #include <unordered_map>
 
 namespace curvetet::volume {
+
+const char* to_string(FillReject r) {
+  switch (r) {
+    case FillReject::frozen: return "frozen";
+    case FillReject::topology: return "topology";
+    case FillReject::duplicate_entity: return "duplicate_entity";
+    case FillReject::link_condition: return "link_condition";
+    case FillReject::energy: return "energy";
+    case FillReject::frozen_tet_energy: return "frozen_tet_energy";
+    case FillReject::sizing: return "sizing";
+    case FillReject::no_gain: return "no_gain";
+    case FillReject::positivity: return "positivity";
+  }
+  return "?";
+}
+
+nlohmann::json FillStats::rejected_json() const {
+  nlohmann::json out = nlohmann::json::object();
+  for (int r = 0; r < kFillRejectReasons; ++r) out[to_string(static_cast<FillReject>(r))] = rejected[r];
+  return out;
+}
 namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {

@@ -22,6 +22,9 @@
 #include "curvetet/mesh/linear_tet_mesh.hpp"
 #include "curvetet/volume/layered_surface.hpp"
 
+#include <nlohmann/json.hpp>
+
+#include <array>
 #include <cstddef>
 #include <string>
 
@@ -44,11 +47,28 @@ struct FillOptions {
   double interior_spacing = 0;
 };
 
+// Why the fill's optimizer turned a collapse, flip or edge removal down,
+// each a named check (volume/exact_optimizer.hpp), in the order they run:
+//   frozen             the vertex to remove is on the surface or the box
+//   topology           not an edge, or not a closed ring of the right size
+//   duplicate_entity   the new tets would repeat an existing edge or face
+//   link_condition     lk(u) ∩ lk(v) != lk(uv) (the boundary closed at infinity)
+//   energy             a new tet above the coarsening bound
+//   frozen_tet_energy  a new tet on frozen vertices only above its limit
+//   sizing             a new edge longer than FillOptions::max_edge_length
+//   no_gain            the new worst tet not below the old one (where asked)
+//   positivity         a new tet not positive by exact orient3d
+enum class FillReject { frozen, topology, duplicate_entity, link_condition, energy, frozen_tet_energy, sizing, no_gain, positivity };
+constexpr int kFillRejectReasons = 9;
+const char* to_string(FillReject r);
+
 struct FillStats {
   std::size_t background_tets = 0, bsp_cuts = 0, bsp_cells = 0;
   std::size_t exact_tets = 0, exact_vertices = 0, rational_vertices = 0;
   std::size_t unrounded_after_first_pass = 0;
   std::size_t collapses = 0, smooths = 0, flips = 0, splits = 0, relocations = 0;
+  std::array<std::size_t, kFillRejectReasons> rejected{}; // by FillReject
+  nlohmann::json rejected_json() const; // reason -> count
   double seconds_insert = 0, seconds_layer = 0, seconds_optimize = 0;
   // Of the output's tets, in highorder/quality.hpp's convention (AMIPS of
   // the regular tet: 3, kReportedAmipsPerEnergy x the fill's own energy,
