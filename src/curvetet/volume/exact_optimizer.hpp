@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -293,6 +294,26 @@ class Optimizer {
   // boundary face (u, v, p); an edge in both would duplicate a face.
   bool boundary_link_condition(int u, int v) const;
 
+  // The invariants the new tets of a collapse or flip must keep, as one list
+  // run in this order (cheapest first; the first broken is the reason
+  // counted):
+  //   energy             every new tet's energy <= max_energy (< if strict);
+  //                      counted as energy_reason
+  //   frozen_tet_energy  (frozen_limit) a new tet on frozen vertices only, which
+  //                      no smoothing can improve, within kFrozenTetLimit or
+  //                      the coarsening bound
+  //   sizing             (sizing_from >= 0) no new edge from that vertex longer
+  //                      than the sizing bound
+  //   positivity         every new tet positive by exact orient3d
+  struct NewTetRule {
+    double max_energy = std::numeric_limits<double>::infinity();
+    bool strict = false;
+    FillReject energy_reason = FillReject::energy;
+    bool frozen_limit = false;
+    int sizing_from = -1;
+  };
+  std::optional<FillReject> broken_invariant(const std::vector<Tet>& tets, const NewTetRule& rule) const;
+
   // Counts r in FillStats::rejected; `return reject(r);` where a check fails.
   bool reject(FillReject r) const {
     ++stats_.rejected[static_cast<int>(r)];
@@ -300,7 +321,6 @@ class Optimizer {
   }
   // Whether a new edge (a, b) would break the sizing bound.
   bool too_long(int a, int b) const;
-  bool orient_positive(Tet& t) const { return m_.v.orient(t[0], t[1], t[2], t[3]) > 0; }
   void kill(int t);
   int add(const Tet& t);
   bool edge_exists(int a, int b) const { return stars_.has_edge(a, b); }

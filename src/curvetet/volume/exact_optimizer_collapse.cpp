@@ -1,6 +1,7 @@
 #include "curvetet/volume/exact_optimizer.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <set>
 #include <vector>
@@ -22,16 +23,17 @@ bool Optimizer::surface_collapse_allowed(int v, int u, std::vector<int>& removed
     return false;
   };
   removed.clear();
+  std::vector<Tet> added;
   for (int t : stars_.star(v)) {
     const Tet& q = stars_.corners(t);
-    if (std::find(q.begin(), q.end(), u) != q.end()) {
+    if (std::find(q.begin(), q.end(), u) != q.end())
       removed.push_back(t);
-      continue;
-    }
-    const Tet n = moved(q, v, u);
-    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return fail(FillReject::positivity);
-    if (worst) *worst = std::max(*worst, energy(n));
+    else
+      added.push_back(moved(q, v, u));
   }
+  if (const auto broken = broken_invariant(added, NewTetRule{})) return fail(*broken); // positivity
+  if (worst)
+    for (const Tet& n : added) *worst = std::max(*worst, energy(n));
   if (removed.empty()) return fail(FillReject::topology);
   if (!link_condition(u, v) || !boundary_link_condition(u, v)) return fail(FillReject::link_condition);
   return true;
@@ -57,36 +59,55 @@ bool Optimizer::collapse(int v, int u, Keep keep) {
   if (m_.frozen[v] || pinned(v) || u == v) return reject(FillReject::frozen);
   double old_max = 0;
   for (int t : stars_.star(v)) old_max = std::max(old_max, tet_energy(t));
-  const double bound = std::max(old_max, coarsen_energy_);
-  const bool require_quality = keep == Keep::quality;
-  // The new tets: energy first (cheap), exact orientation last.
   std::vector<int> removed;
+  std::vector<Tet> added;
   for (int t : stars_.star(v)) {
     const Tet& q = stars_.corners(t);
-    if (std::find(q.begin(), q.end(), u) != q.end()) {
+    if (std::find(q.begin(), q.end(), u) != q.end())
       removed.push_back(t);
-      continue;
-    }
-    const Tet n = moved(q, v, u);
-    if (require_quality) {
-      const double e = energy(n);
-      if (!(e <= bound)) return reject(FillReject::energy);
-      // A tet on frozen vertices only can never be smoothed: keep it good.
-      if (e > std::max(kFrozenTetLimit, coarsen_energy_) && m_.frozen[n[0]] && m_.frozen[n[1]] && m_.frozen[n[2]] &&
-          m_.frozen[n[3]])
-        return reject(FillReject::frozen_tet_energy);
-      for (int x : n)
-        if (x != u && too_long(u, x) && !edge_exists(u, x)) return reject(FillReject::sizing);
-    } else if (keep == Keep::lower_max && !(energy(n) < old_max)) {
-      return reject(FillReject::no_gain);
-    }
-    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return reject(FillReject::positivity);
+    else
+      added.push_back(moved(q, v, u));
   }
+  NewTetRule rule;
+  if (keep == Keep::quality) {
+    rule.max_energy = std::max(old_max, coarsen_energy_);
+    rule.frozen_limit = true;
+    rule.sizing_from = u;
+  } else if (keep == Keep::lower_max) {
+    rule.max_energy = old_max;
+    rule.strict = true;
+    rule.energy_reason = FillReject::no_gain;
+  }
+  if (const auto why = broken_invariant(added, rule)) return reject(*why);
   if (removed.empty()) return reject(FillReject::topology); // not an edge
   if (!link_condition(u, v)) return reject(FillReject::link_condition);
   merge(v, u, removed);
   ++stats_.collapses;
   return true;
+}
+
+std::optional<FillReject> Optimizer::broken_invariant(const std::vector<Tet>& tets, const NewTetRule& rule) const {
+  const bool needs_energy = std::isfinite(rule.max_energy) || rule.frozen_limit;
+  std::vector<double> e(needs_energy ? tets.size() : 0);
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    e[i] = energy(tets[i]);
+    if (!(rule.strict ? e[i] < rule.max_energy : e[i] <= rule.max_energy)) return rule.energy_reason;
+  }
+  if (rule.frozen_limit)
+    for (std::size_t i = 0; i < tets.size(); ++i) {
+      const Tet& n = tets[i];
+      if (e[i] > std::max(kFrozenTetLimit, coarsen_energy_) && m_.frozen[n[0]] && m_.frozen[n[1]] &&
+          m_.frozen[n[2]] && m_.frozen[n[3]])
+        return FillReject::frozen_tet_energy;
+    }
+  if (rule.sizing_from >= 0)
+    for (const Tet& n : tets)
+      for (int x : n)
+        if (x != rule.sizing_from && too_long(rule.sizing_from, x) && !edge_exists(rule.sizing_from, x))
+          return FillReject::sizing;
+  for (const Tet& n : tets)
+    if (m_.v.orient(n[0], n[1], n[2], n[3]) <= 0) return FillReject::positivity;
+  return std::nullopt;
 }
 
 void Optimizer::merge(int v, int u, const std::vector<int>& removed) {

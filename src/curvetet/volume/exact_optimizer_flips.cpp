@@ -162,15 +162,13 @@ bool Optimizer::flip_23(int t, int k) {
   for (int x : stars_.corners(other))
     if (x != f[0] && x != f[1] && x != f[2]) e = x;
   if (edge_exists(d, e)) return reject(FillReject::duplicate_entity);
-  const double old_max = std::max(tet_energy(t), tet_energy(other));
-  std::array<Tet, 3> nt;
-  double new_max = 0;
-  for (int i = 0; i < 3; ++i) {
-    nt[i] = {f[i], f[(i + 1) % 3], e, d}; // positive iff de pierces f
-    if (!orient_positive(nt[i])) return reject(FillReject::positivity);
-    new_max = std::max(new_max, energy(nt[i]));
-  }
-  if (!(new_max < old_max)) return reject(FillReject::no_gain);
+  NewTetRule rule;
+  rule.max_energy = std::max(tet_energy(t), tet_energy(other));
+  rule.strict = true;
+  rule.energy_reason = FillReject::no_gain;
+  std::vector<Tet> nt(3);
+  for (int i = 0; i < 3; ++i) nt[i] = {f[i], f[(i + 1) % 3], e, d}; // positive iff de pierces f
+  if (const auto why = broken_invariant(nt, rule)) return reject(*why);
   kill(t);
   kill(other);
   for (auto& x : nt) add(x);
