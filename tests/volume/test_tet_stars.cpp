@@ -75,3 +75,18 @@ TEST(TetStars, RenamingACornerMovesTheTetBetweenStars) {
   n.pop_vertex();
   EXPECT_THROW(TetStars({{0, 1, 2, 3}}, 4).pop_vertex(), std::logic_error); // vertex 3 has a tet
 }
+
+// lk(0) ∩ lk(1) holds vertex 4 (tets 0-4 and 1-4 exist) but lk(01) is the
+// edge 2-3 only: collapsing 1 onto 0 would make two tets share edge 0-4 in
+// a way the mesh cannot hold. Without the tet (0, 4, 5, 6) (outside the
+// region asked for) the condition holds.
+TEST(TetStars, LinkConditionSeesACommonNeighbourOffTheEdge) {
+  const TetStars m({{0, 1, 2, 3}, {0, 4, 5, 6}, {1, 4, 7, 8}}, 9);
+  TetStars::LinkBuffers buffers;
+  EXPECT_FALSE(m.link_condition(0, 1, buffers));
+  EXPECT_TRUE(m.link_condition(0, 1, buffers, [](int t) { return t != 1; }));
+  const TetStars single({{0, 1, 2, 3}}, 4);
+  EXPECT_TRUE(single.link_condition(0, 3, buffers)); // one tet: lk(03) = edge 1-2
+  const TetStars pair({{0, 1, 2, 3}, {1, 0, 2, 4}}, 5); // two tets on face 0-1-2
+  EXPECT_FALSE(pair.link_condition(3, 4, buffers)); // not an edge: lk(3) and lk(4) share triangle 0-1-2
+}

@@ -274,9 +274,7 @@ class Optimizer {
   std::vector<std::pair<int, std::uint64_t>> saved_touched_; // (vertex, touched_ before) in it
   edit::TetStars stars_; // the tets (m_.tets is left empty)
   mutable std::vector<std::array<int, 4>> across_; // per tet: neighbours found so far (-1: not known)
-  mutable std::array<std::vector<std::array<int, 3>>, 3> link_tris_;
-  mutable std::array<std::vector<std::array<int, 2>>, 4> link_edges_;
-  mutable std::array<std::vector<int>, 4> link_verts_;
+  mutable edit::TetStars::LinkBuffers link_buffers_;
   std::vector<double> energy_; // per tet; kStale until computed
   std::vector<std::uint64_t> flip_failed_; // per tet: clock_ of its last failed flip_pass visit, or 0
   // Change stamps: touched_[x] = clock_ when x moved or a tet at x changed;
@@ -326,7 +324,7 @@ class Optimizer {
   bool edge_exists(int a, int b) const { return stars_.has_edge(a, b); }
   bool face_exists(int a, int b, int c) const { return stars_.has_face(a, b, c); }
   // lk(u) ∩ lk(v) = lk(uv) (v interior, so no virtual boundary vertex).
-  bool link_condition(int u, int v) const;
+  bool link_condition(int u, int v) const { return stars_.link_condition(u, v, link_buffers_); }
 };
 
 // Used by the smoothing and the insertions (restar).

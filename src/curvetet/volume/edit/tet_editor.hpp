@@ -60,6 +60,7 @@ class TetEditor {
 
   // Live tets having corner v (any order).
   const std::vector<int>& tets_of(int v) const { return stars_.star(v); }
+  const TetStars& stars() const { return stars_; }
   // Vertices sharing a live tet with v, ascending.
   std::vector<int> neighbours(int v) const { return stars_.neighbours(v); }
   bool frozen(int v) const { return frozen_[v]; }
