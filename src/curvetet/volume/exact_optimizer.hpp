@@ -5,7 +5,8 @@
 //   exact_optimizer_mesh.cpp      transactions (journal), rounding; the tets
 //                                 and their stars are edit::TetStars
 //   exact_optimizer_smooth.cpp    energies, smoothing, worst-tet moves
-//   exact_optimizer_collapse.cpp  collapses and their link conditions
+//   exact_optimizer_collapse.cpp  collapses, the new-tet invariants, the
+//                                 boundary's link condition
 //   exact_optimizer_flips.cpp     2-3, 3-2 flips and edge removal
 //   exact_optimizer_insert.cpp    splits, insertions, cavities
 // and the schedule (passes, round_and_optimize) in optimize.cpp. What every
@@ -60,6 +61,8 @@ class Optimizer {
 
   bool collapse_on_surface(int v, int u);
 
+  // Vertices, frozen flags and surface Steiner points; its `tets` is empty
+  // while the optimizer runs (they live in TetStars: tet(), star()).
   ExactTetMesh& mesh() { return m_; }
   bool alive(int t) const { return stars_.alive(t); }
   const Tet& tet(int t) const { return stars_.corners(t); }
