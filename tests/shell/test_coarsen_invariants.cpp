@@ -85,6 +85,39 @@ TEST(CoarsenInvariants, QualityRejected) {
   EXPECT_EQ(run(s, move_vertex(s, 1, s.bottom[1] + d, s.middle[1] + d, s.top[1] + d), 10, 1.0), Rejection::quality);
 }
 
+// Three prisms in a strip: f0 (0, 1, 2) a needle of MIPS 14.4, f1 (1, 3, 2)
+// and f2 (2, 3, 4) about 1. Moving vertex 4 makes f2 a needle of MIPS 5.7:
+// below the star's worst (f0), but worse than every old face it shares an
+// edge with (f1 and f2 itself: 1.4 at most). Bounded by the star's worst
+// alone, needles grew along the input's short edges (abc_00000001, cheese).
+TEST(CoarsenInvariants, QualityRejectedAcrossAnEdgeNotByTheStarsWorst) {
+  Shell s;
+  const Vec3 at[5] = {{0, 0, 0}, {1, 0, 0}, {0.5, 0.03, 0}, {1.2, 0.8, 0}, {0.4, 1.0, 0}};
+  const Vec3 up(0, 0, 1);
+  for (const auto& p : at) {
+    s.middle.push_back(p);
+    s.bottom.push_back(p - up);
+    s.top.push_back(p + up);
+  }
+  s.faces = {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}};
+  s.tracked = {{0}, {1}, {2}};
+  s.singular = {0, 0, 0, 0, 0};
+  s.input.vertices = s.middle;
+  s.input.faces = s.faces;
+  const MapPoint image[5] = {{0, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {2, 0, 1}};
+  for (int v = 0; v < 5; ++v) s.points.push_back({at[v], image[v].prism, image[v]});
+  StarCandidate c;
+  c.op = OpKind::smooth;
+  c.removed = {0, 1, 2};
+  c.faces = s.faces;
+  c.moved = {4};
+  const Vec3 needle(0.791, 0.469, 0);
+  c.moved_bottom = {needle - up};
+  c.moved_middle = {needle};
+  c.moved_top = {needle + up};
+  EXPECT_EQ(run(s, c, 10, 2.0), Rejection::quality);
+}
+
 TEST(CoarsenInvariants, SlabQualityRejected) {
   // Lowering the middle of vertex 0 to z = -0.99 flattens the lower slab's
   // tets on pillar 0 (AMIPS far above 60; the unit slab's worst is about 6).

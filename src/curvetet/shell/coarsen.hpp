@@ -37,7 +37,7 @@ namespace curvetet::shell {
 struct CoarsenOptions {
   double epsilon = 0.01;       // distance bound, relative to the input bbox diagonal
   double epsilon_abs = 0;      // absolute override when > 0
-  double quality_bound = 30;   // MIPS of new middle triangles may reach max(old, this)
+  double quality_bound = 30;   // MIPS of new middle triangles above this: no worse than an old one across an edge
   // AMIPS (highorder/quality.hpp: 3 for the regular tet) of the tets of new
   // lower slabs may reach max(old, this): in thin regions the shell is thin,
   // and long faces there make flat output tets.

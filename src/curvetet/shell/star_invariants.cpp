@@ -167,16 +167,25 @@ class MiddleQuality final : public StarInvariant {
  public:
   Rejection reason() const override { return Rejection::quality; }
   bool holds(const StarContext& ctx, StarCandidate& c, Rejection&) const override {
-    const auto& s = ctx.editor.shell();
-    double old_max = 0;
-    for (int f : c.removed) {
-      const auto& t = s.faces[f];
-      old_max = std::max(old_max, mips(s.middle[t[0]], s.middle[t[1]], s.middle[t[2]]));
-    }
-    const double bound = std::max(old_max, ctx.quality_bound);
+    const auto& e = ctx.editor;
+    const auto& s = e.shell();
     for (const auto& t : c.faces) {
-      const auto& e = ctx.editor;
-      if (!(mips(e.middle(c, t[0]), e.middle(c, t[1]), e.middle(c, t[2])) <= bound)) return false;
+      const double q = mips(e.middle(c, t[0]), e.middle(c, t[1]), e.middle(c, t[2]));
+      if (q <= ctx.quality_bound) continue;
+      // Above the bound: no worse than an old face it shares an edge with.
+      // (Bounded by the star's worst face alone, needles beside the input's
+      // short edges grew along them wherever a worse face was elsewhere in
+      // the star: abc_00000001, cheese; docs/usable_elements.md, session 38.)
+      double across = 0;
+      for (int k = 0; k < 3; ++k) {
+        const int x = t[k], y = t[(k + 1) % 3];
+        for (int f : c.removed) {
+          const auto& o = s.faces[f];
+          const bool has_x = o[0] == x || o[1] == x || o[2] == x, has_y = o[0] == y || o[1] == y || o[2] == y;
+          if (has_x && has_y) across = std::max(across, mips(s.middle[o[0]], s.middle[o[1]], s.middle[o[2]]));
+        }
+      }
+      if (!(q <= across)) return false;
     }
     return true;
   }

@@ -5,8 +5,8 @@
 //
 // In list order (cheap first; later ones use what earlier ones derived):
 //  SingularIsolation  no new edge joins two singular vertices
-//  MiddleQuality      (ranking rule) max MIPS of the new middle triangles <=
-//                     max(old max, bound)
+//  MiddleQuality      (ranking rule) each new middle triangle's MIPS <= the
+//                     bound, or <= that of an old triangle it shares an edge with
 //  SlabQuality        (ranking rule) max AMIPS of the 12 tets of the new
 //                     lower slabs (middle over bottom: the output's slab
 //                     tets come from them) <= max(old max, bound)
