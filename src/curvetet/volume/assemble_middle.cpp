@@ -306,7 +306,7 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
   const int n = static_cast<int>(middle.bottom.size());
   std::vector<char> retracted(n, 0);
   AssemblyStats stats;
-  FillStats fill_stats; // of the last fill_direct() that succeeded
+  FillStats fill_stats; // of the fill the last round used
   int layered_rounds = 0;
   using clock = std::chrono::steady_clock;
   const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
@@ -322,15 +322,21 @@ bool assemble_on_middle(const CurvedMiddle& middle, int order, mesh::TetMesh& ou
     for (const double spacing : {kInteriorSpacing * mesh::mean_edge_length(surface), 0.0}) {
       FillOptions fo;
       fo.interior_spacing = spacing;
-      filled = fill_direct(surface, OffsetSide::inward, fo, &fill_stats);
-      if (filled && verify_tet_mesh(*filled, surface.faces).ok()) break;
+      FillStats attempt;
+      filled = fill_direct(surface, OffsetSide::inward, fo, &attempt);
+      if (filled && verify_tet_mesh(*filled, surface.faces).ok()) {
+        fill_stats = attempt;
+        break;
+      }
       filled.reset();
     }
     if (!filled) {
       TetrahedralizeOptions to;
       to.direct = false;
       try {
-        filled = tetrahedralize(surface, to).mesh;
+        auto layered = tetrahedralize(surface, to);
+        filled = std::move(layered.mesh);
+        fill_stats = layered.interior;
         ++layered_rounds;
       } catch (const Error& e) {
         logger().debug("assembly on the middle surface, round {}: no fill ({})", round, e.what());
